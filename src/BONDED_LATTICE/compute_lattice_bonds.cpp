@@ -1,0 +1,133 @@
+/* ----------------------------------------------------------------------
+   BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
+
+   compute lattice/bonds
+   global vector: [1] intact bonds, [2] bonds broken in tension,
+   [3] bonds broken in shear, [4] active (compressed) contacts, counting
+   broken bonds and unbonded contacts.  Each bond is counted once.
+   per-atom vector: intact bonds of each atom (for dumps and OVITO).
+------------------------------------------------------------------------- */
+
+#include "compute_lattice_bonds.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "fix_lattice_bond_store.h"
+#include "force.h"
+#include "memory.h"
+#include "pair_lattice_bond.h"
+#include "update.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+/* ---------------------------------------------------------------------- */
+
+ComputeLatticeBonds::ComputeLatticeBonds(LAMMPS *lmp, int narg, char **arg) :
+    Compute(lmp, narg, arg), pair(nullptr), nmax(0), intact_per_atom(nullptr)
+{
+  if (narg != 3) error->all(FLERR, "Illegal compute lattice/bonds command: it takes no arguments");
+  vector_flag = 1;
+  size_vector = 4;
+  extvector = 1;
+  peratom_flag = 1;
+  size_peratom_cols = 0;
+  comm_reverse = 1;
+  vector = counts;
+}
+
+/* ---------------------------------------------------------------------- */
+
+ComputeLatticeBonds::~ComputeLatticeBonds()
+{
+  memory->destroy(intact_per_atom);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ComputeLatticeBonds::init()
+{
+  pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
+  if (!pair) error->all(FLERR, "compute lattice/bonds requires pair_style lattice/bond");
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ComputeLatticeBonds::compute_vector()
+{
+  invoked_vector = update->ntimestep;
+  FixLatticeBondStore *store = pair->store();
+  double local[4] = {0.0, 0.0, 0.0, (double) pair->active_contacts()};
+  if (store) {
+    const int *mask = atom->mask;
+    for (int i = 0; i < atom->nlocal; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      const LatticeBondRecord *r = store->records(i);
+      for (int s = 0; s < store->nrec[i]; s++) {
+        if (r[s].state == LB_INTACT) local[0] += 1.0;
+        else if (r[s].state == LB_BROKEN_TENSION) local[1] += 1.0;
+        else if (r[s].state == LB_BROKEN_SHEAR) local[2] += 1.0;
+      }
+    }
+  }
+  MPI_Allreduce(local, counts, 4, MPI_DOUBLE, MPI_SUM, world);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ComputeLatticeBonds::compute_peratom()
+{
+  invoked_peratom = update->ntimestep;
+  if (atom->nmax > nmax) {
+    nmax = atom->nmax;
+    memory->destroy(intact_per_atom);
+    memory->create(intact_per_atom, nmax, "lattice/bonds:intact");
+    vector_atom = intact_per_atom;
+  }
+  const int nall = atom->nlocal + atom->nghost;
+  std::memset(intact_per_atom, 0, sizeof(double) * nall);
+
+  FixLatticeBondStore *store = pair->store();
+  const int *idx = pair->partner_index();
+  if (store && idx) {
+    const int maxslot = store->maxslot;
+    for (int i = 0; i < atom->nlocal; i++) {
+      const LatticeBondRecord *r = store->records(i);
+      for (int s = 0; s < store->nrec[i]; s++) {
+        if (r[s].state != LB_INTACT) continue;
+        intact_per_atom[i] += 1.0;
+        const int j = idx[(bigint) i * maxslot + s];
+        if (j >= 0) intact_per_atom[j] += 1.0;
+      }
+    }
+  }
+  comm->reverse_comm(this);
+
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (!(mask[i] & groupbit)) intact_per_atom[i] = 0.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int ComputeLatticeBonds::pack_reverse_comm(int n, int first, double *buf)
+{
+  for (int i = 0; i < n; i++) buf[i] = intact_per_atom[first + i];
+  return n;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ComputeLatticeBonds::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  for (int i = 0; i < n; i++) intact_per_atom[list[i]] += buf[i];
+}
+
+/* ---------------------------------------------------------------------- */
+
+double ComputeLatticeBonds::memory_usage()
+{
+  return (double) nmax * sizeof(double);
+}

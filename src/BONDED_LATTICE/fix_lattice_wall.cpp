@@ -1,0 +1,343 @@
+/* ----------------------------------------------------------------------
+   BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
+
+   fix lattice/wall: a flat wall perpendicular to one axis.  A particle of
+   radius R whose centre lies a distance h inside the wall overlaps it by
+   delta = R - h; the wall pushes it inward with Kn*delta and resists
+   sliding with a shear spring Ks capped at mu*Kn*delta (Li et al. 2018,
+   particle-wall contact).  Optionally the wall moves at constant speed.
+------------------------------------------------------------------------- */
+
+#include "fix_lattice_wall.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "memory.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+static constexpr int NPERATOM = 6;    // shear[3] + xprev[3]
+
+/* ---------------------------------------------------------------------- */
+
+FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), vel(0.0), shear(nullptr), xprev(nullptr), history_ready(0),
+    wall_energy(0.0), force_flag(0)
+{
+  if (narg < 8)
+    error->all(FLERR, "Illegal fix lattice/wall command: expected fix ID group lattice/wall "
+               "face position Kn Ks mu [vel v]");
+
+  const std::string face = arg[3];
+  if (face == "xlo" || face == "xhi") dim = 0;
+  else if (face == "ylo" || face == "yhi") dim = 1;
+  else if (face == "zlo" || face == "zhi") dim = 2;
+  else error->all(FLERR, "fix lattice/wall face {} is not valid: use xlo xhi ylo yhi zlo zhi", face);
+  if (dim == 2 && domain->dimension == 2)
+    error->all(FLERR, "fix lattice/wall face {} is not allowed in a 2d simulation", face);
+  inward = utils::strmatch(face, "lo$") ? 1 : -1;
+
+  pos0 = utils::numeric(FLERR, arg[4], false, lmp);
+  kn = utils::numeric(FLERR, arg[5], false, lmp);
+  ks = utils::numeric(FLERR, arg[6], false, lmp);
+  mu = utils::numeric(FLERR, arg[7], false, lmp);
+  if (!(kn > 0.0)) error->all(FLERR, "fix lattice/wall Kn = {} is out of range: need Kn > 0", kn);
+  if (!(ks >= 0.0)) error->all(FLERR, "fix lattice/wall Ks = {} is out of range: need Ks >= 0", ks);
+  if (!(mu >= 0.0)) error->all(FLERR, "fix lattice/wall mu = {} is out of range: need mu >= 0", mu);
+
+  int iarg = 8;
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    if (key == "vel") {
+      if (iarg + 1 >= narg) error->all(FLERR, "fix lattice/wall keyword vel needs a value");
+      vel = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      iarg += 2;
+    } else {
+      error->all(FLERR, "Unknown fix lattice/wall keyword {}: the only keyword is vel", key);
+    }
+  }
+
+  t0 = current_time();
+
+  scalar_flag = 1;
+  vector_flag = 1;
+  size_vector = 5;
+  global_freq = 1;
+  extscalar = 1;
+  extvector = -1;
+  extlist = new int[5]{1, 1, 1, 0, 1};
+  energy_global_flag = 1;
+  restart_global = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  maxexchange = NPERATOM;
+  dynamic_group_allow = 1;
+
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+  std::memset(wall_force, 0, sizeof(wall_force));
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixLatticeWall::~FixLatticeWall()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(shear);
+  memory->destroy(xprev);
+  delete[] extlist;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeWall::setmask()
+{
+  return POST_FORCE | MIN_POST_FORCE;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixLatticeWall::current_time() const
+{
+  return update->atime + (double) (update->ntimestep - update->atimestep) * update->dt;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixLatticeWall::position() const
+{
+  return pos0 + vel * (current_time() - t0);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeWall::setup(int vflag)
+{
+  if (!history_ready) {
+    for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+    history_ready = 1;
+  }
+  post_force(vflag);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeWall::min_setup(int vflag)
+{
+  setup(vflag);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeWall::min_post_force(int vflag)
+{
+  post_force(vflag);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeWall::post_force(int /*vflag*/)
+{
+  double **x = atom->x;
+  double **f = atom->f;
+  const double *radius = atom->radius;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const double wall = position();
+
+  force_flag = 0;
+  std::memset(wall_force, 0, sizeof(wall_force));
+  wall_energy = 0.0;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+
+    // tangential displacement since the last step (periodic jumps removed)
+    double inc[3] = {x[i][0] - xprev[i][0], x[i][1] - xprev[i][1], x[i][2] - xprev[i][2]};
+    domain->minimum_image(FLERR, inc);
+    inc[dim] = 0.0;
+    xprev[i][0] = x[i][0];
+    xprev[i][1] = x[i][1];
+    xprev[i][2] = x[i][2];
+
+    const double h = inward * (x[i][dim] - wall);    // centre's distance inside the wall
+    const double delta = radius[i] - h;
+    double *s = shear[i];
+    if (delta <= 0.0) {
+      s[0] = s[1] = s[2] = 0.0;
+      continue;
+    }
+
+    const double fn = kn * delta;
+    double fs[3] = {0.0, 0.0, 0.0};
+    double es = 0.0;
+    if (ks > 0.0) {
+      for (int k = 0; k < 3; k++) s[k] += inc[k];
+      s[dim] = 0.0;
+      const double s2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
+      const double limit = mu * fn;
+      if (ks * ks * s2 > limit * limit) {
+        const double scale = limit / (ks * sqrt(s2));
+        for (int k = 0; k < 3; k++) s[k] *= scale;
+      }
+      for (int k = 0; k < 3; k++) fs[k] = -ks * s[k];
+      es = 0.5 * ks * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    }
+    fs[dim] = inward * fn;
+    for (int k = 0; k < 3; k++) {
+      f[i][k] += fs[k];
+      wall_force[k] -= fs[k];
+    }
+    wall_force[3] += 1.0;
+    wall_energy += 0.5 * kn * delta * delta + es;
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixLatticeWall::compute_scalar()
+{
+  if (!force_flag) {
+    double local[5] = {wall_force[0], wall_force[1], wall_force[2], wall_force[3], wall_energy};
+    MPI_Allreduce(local, total, 5, MPI_DOUBLE, MPI_SUM, world);
+    force_flag = 1;
+  }
+  return total[4];
+}
+
+/* ----------------------------------------------------------------------
+   1-3: force exerted by the particles on the wall, 4: wall position,
+   5: number of particles touching it
+------------------------------------------------------------------------- */
+
+double FixLatticeWall::compute_vector(int n)
+{
+  if (n == 3) return position();
+  compute_scalar();
+  return n < 3 ? total[n] : total[3];
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeWall::grow_arrays(int nmax)
+{
+  memory->grow(shear, nmax, 3, "lattice/wall:shear");
+  memory->grow(xprev, nmax, 3, "lattice/wall:xprev");
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeWall::copy_arrays(int i, int j, int /*delflag*/)
+{
+  for (int k = 0; k < 3; k++) {
+    shear[j][k] = shear[i][k];
+    xprev[j][k] = xprev[i][k];
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeWall::set_arrays(int i)
+{
+  for (int k = 0; k < 3; k++) {
+    shear[i][k] = 0.0;
+    xprev[i][k] = atom->x[i][k];
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeWall::pack_exchange(int i, double *buf)
+{
+  for (int k = 0; k < 3; k++) {
+    buf[k] = shear[i][k];
+    buf[3 + k] = xprev[i][k];
+  }
+  return NPERATOM;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeWall::unpack_exchange(int nlocal, double *buf)
+{
+  for (int k = 0; k < 3; k++) {
+    shear[nlocal][k] = buf[k];
+    xprev[nlocal][k] = buf[3 + k];
+  }
+  return NPERATOM;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeWall::pack_restart(int i, double *buf)
+{
+  buf[0] = NPERATOM + 1;
+  pack_exchange(i, buf + 1);
+  return NPERATOM + 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeWall::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeWall::size_restart(int /*i*/)
+{
+  return NPERATOM + 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeWall::maxsize_restart()
+{
+  return NPERATOM + 1;
+}
+
+/* ----------------------------------------------------------------------
+   global restart: the wall's position, so a moving platen continues from it
+------------------------------------------------------------------------- */
+
+void FixLatticeWall::write_restart(FILE *fp)
+{
+  if (comm->me == 0) {
+    // where the wall is now; a restarted run may give a new vel
+    double list[2] = {position(), current_time()};
+    int size = sizeof(list);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), 2, fp);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeWall::restart(char *buf)
+{
+  auto list = (double *) buf;
+  pos0 = list[0];
+  t0 = list[1];
+  history_ready = 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixLatticeWall::memory_usage()
+{
+  return (double) atom->nmax * NPERATOM * sizeof(double);
+}

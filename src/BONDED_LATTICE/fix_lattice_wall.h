@@ -1,0 +1,70 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
+   fix lattice/wall: flat platen with a normal spring, a frictional shear
+   spring and optional motion along its normal.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(lattice/wall,FixLatticeWall);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_LATTICE_WALL_H
+#define LMP_FIX_LATTICE_WALL_H
+
+#include "fix.h"
+
+namespace LAMMPS_NS {
+
+class FixLatticeWall : public Fix {
+ public:
+  FixLatticeWall(class LAMMPS *, int, char **);
+  ~FixLatticeWall() override;
+  int setmask() override;
+  void setup(int) override;
+  void min_setup(int) override;
+  void post_force(int) override;
+  void min_post_force(int) override;
+  double compute_scalar() override;
+  double compute_vector(int) override;
+
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+  double memory_usage() override;
+
+  double position() const;    // wall coordinate at the current step
+
+ protected:
+  int dim;          // 0, 1, 2 for x, y, z
+  int inward;       // +1 for a lo face (particles above it), -1 for a hi face
+  double pos0;      // position at time t0
+  double t0;        // simulation time at which the wall was at pos0
+  double vel;       // speed along +axis
+  double kn, ks, mu;
+
+  double **shear;    // per-atom shear-spring displacement against the wall
+  double **xprev;    // per-atom position at the last force evaluation
+  int history_ready;
+
+  double wall_force[4];    // force the particles exert on the wall (x, y, z), contacts
+  double wall_energy;
+  int force_flag;
+  double total[5];
+
+  double current_time() const;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

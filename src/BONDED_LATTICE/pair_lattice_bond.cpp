@@ -1,0 +1,628 @@
+/* ----------------------------------------------------------------------
+   BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
+
+   Design (see docs/design.md):
+   - Every bond or contact is one LatticeBondRecord stored on the particle
+     with the lower tag, kept by the companion fix LATTICE/BOND/STORE that
+     migrates it with the atom.  The owner's rank computes the force, applies
+     it to both particles and relies on reverse communication (newton on).
+   - Bonds are created once, at the first run, from the full neighbour list.
+   - Per step the force loop visits records only; the neighbour list is used
+     at reneighbouring to find the partners' local indices and to collect
+     unbonded pairs close enough to touch before the next reneighbouring.
+------------------------------------------------------------------------- */
+
+#include "pair_lattice_bond.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "fix_lattice_bond_store.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+static constexpr double DEFAULT_TOLERANCE = 0.01;
+static constexpr int DEFAULT_MAXSLOT = 16;
+
+/* ---------------------------------------------------------------------- */
+
+PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
+    Pair(lmp), params(nullptr), bondable(nullptr), coeff_set(nullptr),
+    tolerance(DEFAULT_TOLERANCE), maxslot(DEFAULT_MAXSLOT), cut_user(0.0), cut_global(0.0),
+    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), ncontact_active(0), any_shear(0)
+{
+  single_enable = 0;
+  restartinfo = 1;
+  writedata = 0;
+  finitecutflag = 1;
+  centroidstressflag = CENTROID_SAME;
+  store_id = "LATTICE_BOND_STORE";
+}
+
+/* ---------------------------------------------------------------------- */
+
+PairLatticeBond::~PairLatticeBond()
+{
+  if (copymode) return;
+  // the records belong to this pair style: switching to another pair style drops them
+  if (modify && modify->nfix && modify->get_fix_by_id(store_id)) modify->delete_fix(store_id);
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(params);
+    memory->destroy(bondable);
+    memory->destroy(coeff_set);
+  }
+  memory->destroy(partner_idx);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLatticeBond::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes + 1;
+  memory->create(setflag, n, n, "pair:setflag");
+  memory->create(cutsq, n, n, "pair:cutsq");
+  memory->create(params, n, n, "pair:params");
+  memory->create(bondable, n, n, "pair:bondable");
+  memory->create(coeff_set, n, n, "pair:coeff_set");
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) {
+      // setflag is always 1 so that init_style, not Pair::init(), reports a
+      // missing pair_coeff with the offending type pair
+      setflag[i][j] = 1;
+      coeff_set[i][j] = 0;
+      bondable[i][j] = 1;
+      params[i][j] = {0.0, 0.0, 0.0, 0.0, 0.0};
+    }
+}
+
+/* ----------------------------------------------------------------------
+   pair_style lattice/bond [tolerance t] [maxslot n] [cutoff rc]
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::settings(int narg, char **arg)
+{
+  int iarg = 0;
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    if (iarg + 1 >= narg) error->all(FLERR, "pair_style lattice/bond keyword {} needs a value", key);
+    if (key == "tolerance") {
+      tolerance = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (tolerance < 0.0 || tolerance >= 0.4)
+        error->all(FLERR, "pair_style lattice/bond tolerance {} is out of range: need 0 <= tolerance < 0.4",
+                   tolerance);
+    } else if (key == "maxslot") {
+      const int n = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (n < 1 || n > 64)
+        error->all(FLERR, "pair_style lattice/bond maxslot {} is out of range: need 1 <= maxslot <= 64",
+                   n);
+      if (fix_store && n != maxslot)
+        error->all(FLERR, "pair_style lattice/bond maxslot cannot change after the first run "
+                   "(it is {}, requested {})", maxslot, n);
+      maxslot = n;
+    } else if (key == "cutoff") {
+      cut_user = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (cut_user <= 0.0)
+        error->all(FLERR, "pair_style lattice/bond cutoff {} must be > 0", cut_user);
+    } else {
+      error->all(FLERR, "Unknown pair_style lattice/bond keyword {}: valid are tolerance, maxslot, cutoff",
+                 key);
+    }
+    iarg += 2;
+  }
+  if (!allocated && domain->box_exist) allocate();
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J Kn Ks Xb Fs0 mu_p [bond yes|no]
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::coeff(int narg, char **arg)
+{
+  if (narg != 7 && narg != 9)
+    error->all(FLERR, "pair_coeff for lattice/bond needs: I J Kn Ks Xb Fs0 mu_p [bond yes|no] "
+               "(got {} arguments)", narg);
+  if (!allocated) allocate();
+
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+
+  BondParams p;
+  p.kn = utils::numeric(FLERR, arg[2], false, lmp);
+  p.ks = utils::numeric(FLERR, arg[3], false, lmp);
+  p.xb = utils::numeric(FLERR, arg[4], false, lmp);
+  p.fs0 = utils::numeric(FLERR, arg[5], false, lmp);
+  p.mu_p = utils::numeric(FLERR, arg[6], false, lmp);
+
+  const std::string which = fmt::format("pair_coeff {} {} (lattice/bond)", arg[0], arg[1]);
+  if (!(p.kn > 0.0)) error->all(FLERR, "{}: Kn = {} is out of range: need Kn > 0 (force/distance)", which, p.kn);
+  if (!(p.ks >= 0.0)) error->all(FLERR, "{}: Ks = {} is out of range: need Ks >= 0 (force/distance)", which, p.ks);
+  if (!(p.xb > 0.0)) error->all(FLERR, "{}: Xb = {} is out of range: need Xb > 0 (distance)", which, p.xb);
+  if (!(p.fs0 >= 0.0)) error->all(FLERR, "{}: Fs0 = {} is out of range: need Fs0 >= 0 (force)", which, p.fs0);
+  if (!(p.mu_p >= 0.0)) error->all(FLERR, "{}: mu_p = {} is out of range: need mu_p >= 0", which, p.mu_p);
+
+  int bond = 1;
+  if (narg == 9) {
+    if (strcmp(arg[7], "bond") != 0)
+      error->all(FLERR, "{}: unknown keyword {}: the only keyword is bond yes|no", which, arg[7]);
+    bond = utils::logical(FLERR, arg[8], false, lmp);
+  }
+
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = MAX(jlo, i); j <= jhi; j++) {
+      params[i][j] = params[j][i] = p;
+      bondable[i][j] = bondable[j][i] = bond;
+      coeff_set[i][j] = coeff_set[j][i] = 1;
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLatticeBond::init_style()
+{
+  if (!atom->radius_flag || !atom->rmass_flag)
+    error->all(FLERR, "pair_style lattice/bond requires atom_style sphere (per-atom diameter and mass)");
+  if (force->newton_pair == 0)
+    error->all(FLERR, "pair_style lattice/bond requires newton on (or newton on off): each bond is "
+               "computed once and its force reaches the partner by reverse communication");
+  if (!allocated) error->all(FLERR, "pair_style lattice/bond has no pair_coeff: give one for every type pair");
+
+  // partners are found by tag: create the global-to-local map if the
+  // input did not ask for one (atom_modify map)
+  if (atom->map_style == Atom::MAP_NONE) {
+    if (atom->map_user == Atom::MAP_NONE) atom->map_user = Atom::MAP_YES;
+    atom->map_init();
+    atom->map_set();
+  }
+
+  const int nt = atom->ntypes;
+  any_shear = 0;
+  for (int i = 1; i <= nt; i++)
+    for (int j = i; j <= nt; j++) {
+      if (!coeff_set[i][j])
+        error->all(FLERR, "pair_style lattice/bond: pair_coeff {} {} is missing; every type pair "
+                   "needs Kn Ks Xb Fs0 mu_p", i, j);
+      if (params[i][j].ks > 0.0) any_shear = 1;
+    }
+
+  // cutoff: the longest bond that can exist (2 * largest radius, plus tolerance)
+  double maxrad_local = 0.0, maxrad = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) maxrad_local = MAX(maxrad_local, atom->radius[i]);
+  MPI_Allreduce(&maxrad_local, &maxrad, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (atom->natoms > 0 && maxrad <= 0.0)
+    error->all(FLERR, "pair_style lattice/bond: all particles have zero diameter; set diameters "
+               "(the bond rest length is r_i + r_j)");
+  const double cut_auto = 2.0 * maxrad * (1.0 + tolerance);
+  if (cut_user > 0.0) {
+    if (cut_user < cut_auto)
+      error->all(FLERR, "pair_style lattice/bond cutoff {} is too small: bonds reach {} "
+                 "(2 * largest radius * (1 + tolerance)); use cutoff >= {}", cut_user, cut_auto, cut_auto);
+    cut_global = cut_user;
+  } else {
+    cut_global = cut_auto > 0.0 ? cut_auto : 1.0;
+  }
+
+  // the companion fix that keeps the records; created at the first run so
+  // that a fix restored by read_restart picks up its per-atom data
+  fix_store = dynamic_cast<FixLatticeBondStore *>(modify->get_fix_by_id(store_id));
+  if (!fix_store)
+    fix_store = dynamic_cast<FixLatticeBondStore *>(
+        modify->add_fix(fmt::format("{} all LATTICE/BOND/STORE {}", store_id, maxslot)));
+  if (!fix_store) error->all(FLERR, "pair_style lattice/bond could not create its record store");
+  if (fix_store->maxslot != maxslot)
+    error->all(FLERR, "pair_style lattice/bond maxslot {} differs from the stored records' {}",
+               maxslot, fix_store->maxslot);
+
+  neighbor->add_request(this, NeighConst::REQ_FULL);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairLatticeBond::init_one(int i, int j)
+{
+  params[j][i] = params[i][j];
+  bondable[j][i] = bondable[i][j];
+  return cut_global;
+}
+
+/* ----------------------------------------------------------------------
+   first run: every pair closer than (ri + rj)(1 + tolerance) becomes an
+   intact bond, stored on the lower tag
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::create_bonds()
+{
+  double **x = atom->x;
+  double *radius = atom->radius;
+  int *type = atom->type;
+  tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+
+  bigint nbond_local = 0;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    if (i >= nlocal) continue;
+    const int *jlist = list->firstneigh[i];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      if (tag[j] <= tag[i]) continue;
+      if (!bondable[type[i]][type[j]]) continue;
+      const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
+      const double reach = (radius[i] + radius[j]) * (1.0 + tolerance);
+      if (delx * delx + dely * dely + delz * delz >= reach * reach) continue;
+      // in a small periodic box two images of one partner may be in range
+      LatticeBondRecord *r = fix_store->records(i);
+      bool seen = false;
+      for (int s = 0; s < fix_store->nrec[i]; s++)
+        if (r[s].partner == tag[j]) seen = true;
+      if (seen) continue;
+      LatticeBondRecord *rec = fix_store->add_record(i);
+      rec->partner = tag[j];
+      rec->state = LB_INTACT;
+      rec->dx_prev[0] = delx;
+      rec->dx_prev[1] = dely;
+      rec->dx_prev[2] = delz;
+      nbond_local++;
+    }
+  }
+  bigint nbond = 0;
+  MPI_Allreduce(&nbond_local, &nbond, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  fix_store->bonds_created = 1;
+  if (comm->me == 0)
+    utils::logmesg(lmp, "pair_style lattice/bond: created {} bonds between {} particles ({:.3f} per particle)\n",
+                   nbond, atom->natoms, atom->natoms ? 2.0 * nbond / atom->natoms : 0.0);
+}
+
+/* ----------------------------------------------------------------------
+   after reneighbouring: find each record's partner, drop contacts that have
+   separated, collect unbonded pairs that may touch before the next rebuild
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::refresh_partners()
+{
+  double **x = atom->x;
+  double *radius = atom->radius;
+  tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+
+  if (atom->nmax > partner_nmax) {
+    partner_nmax = atom->nmax;
+    memory->destroy(partner_idx);
+    memory->create(partner_idx, (bigint) partner_nmax * maxslot, "pair:partner_idx");
+  }
+
+  for (int i = 0; i < nlocal; i++) {
+    LatticeBondRecord *r = fix_store->records(i);
+    int *idx = partner_idx + (bigint) i * maxslot;
+    // walk downwards so that swap-with-last removal only moves visited records
+    for (int s = fix_store->nrec[i] - 1; s >= 0; s--) {
+      int j = atom->map(r[s].partner);
+      if (j >= 0) j = domain->closest_image(i, j);
+      bool drop = false;
+      if (j < 0) {
+        if (r[s].state == LB_INTACT)
+          error->one(FLERR,
+                     "pair_style lattice/bond: bond {}-{} lost its partner (atom {} is not on this "
+                     "rank or its ghosts); the bond is longer than the communication cutoff {}: "
+                     "increase neighbor skin or comm_modify cutoff",
+                     tag[i], r[s].partner, r[s].partner, cut_global + neighbor->skin);
+        drop = (r[s].state == LB_CONTACT);
+      } else if (r[s].state == LB_CONTACT) {
+        const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
+        const double touch = radius[i] + radius[j];
+        drop = (delx * delx + dely * dely + delz * delz >= touch * touch);
+      }
+      if (drop) {
+        const int last = fix_store->nrec[i] - 1;
+        fix_store->remove_record(i, s);
+        if (s != last) idx[s] = idx[last];
+      } else {
+        idx[s] = j;
+      }
+    }
+  }
+
+  // unbonded pairs within touching distance + skin: the only ones that can
+  // come into contact before the next reneighbouring
+  cand_i.clear();
+  cand_j.clear();
+  const double skin = neighbor->skin;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    if (i >= nlocal) continue;
+    const int *jlist = list->firstneigh[i];
+    const LatticeBondRecord *r = fix_store->records(i);
+    const int nr = fix_store->nrec[i];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      if (tag[j] <= tag[i]) continue;
+      const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
+      const double reach = radius[i] + radius[j] + skin;
+      if (delx * delx + dely * dely + delz * delz >= reach * reach) continue;
+      bool seen = false;
+      for (int s = 0; s < nr; s++)
+        if (r[s].partner == tag[j]) seen = true;
+      if (seen) continue;
+      cand_i.push_back(i);
+      cand_j.push_back(j);
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   unbonded candidate pairs that now overlap become contact records
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::detect_new_contacts()
+{
+  double **x = atom->x;
+  double *radius = atom->radius;
+  tagint *tag = atom->tag;
+
+  size_t c = 0;
+  while (c < cand_i.size()) {
+    const int i = cand_i[c], j = cand_j[c];
+    const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
+    const double touch = radius[i] + radius[j];
+    if (delx * delx + dely * dely + delz * delz < touch * touch) {
+      const int s = fix_store->nrec[i];
+      LatticeBondRecord *rec = fix_store->add_record(i);
+      rec->partner = tag[j];
+      rec->state = LB_CONTACT;
+      rec->dx_prev[0] = delx;
+      rec->dx_prev[1] = dely;
+      rec->dx_prev[2] = delz;
+      partner_idx[(bigint) i * maxslot + s] = j;
+      cand_i[c] = cand_i.back();
+      cand_j[c] = cand_j.back();
+      cand_i.pop_back();
+      cand_j.pop_back();
+    } else {
+      c++;
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLatticeBond::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+
+  bool rebuilt = (neighbor->ago == 0);
+  if (!fix_store->bonds_created) {
+    create_bonds();
+    rebuilt = true;
+  }
+  if (rebuilt) refresh_partners();
+  if (!cand_i.empty()) detect_new_contacts();
+
+  if (evflag) {
+    if (any_shear) eval<1, 1>();
+    else eval<1, 0>();
+  } else {
+    if (any_shear) eval<0, 1>();
+    else eval<0, 0>();
+  }
+
+  if (vflag_fdotr) virial_fdotr_compute();
+}
+
+/* ----------------------------------------------------------------------
+   the force loop over records (REFERENCE.md, "Model")
+   EVFLAG: tally energy/virial; SHEAR: some type pair has Ks > 0
+------------------------------------------------------------------------- */
+
+template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
+{
+  double **x = atom->x;
+  double **f = atom->f;
+  const double *radius = atom->radius;
+  const int *type = atom->type;
+  const int nlocal = atom->nlocal;
+  const int *nrec = fix_store->nrec;
+  bigint ncontact = 0;
+
+  for (int i = 0; i < nlocal; i++) {
+    const int nr = nrec[i];
+    if (!nr) continue;
+    LatticeBondRecord *r = fix_store->records(i);
+    const int *idx = partner_idx + (bigint) i * maxslot;
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double radi = radius[i];
+    const BondParams *prow = params[type[i]];
+
+    for (int s = 0; s < nr; s++) {
+      const int j = idx[s];
+      if (j < 0) continue;    // broken bond whose partner is far away
+      LatticeBondRecord &b = r[s];
+      const BondParams &p = prow[type[j]];
+
+      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+      const double rr = sqrt(dx * dx + dy * dy + dz * dz);
+      const double rinv = 1.0 / rr;
+      const double nx = dx * rinv, ny = dy * rinv, nz = dz * rinv;
+      const double xn = rr - (radi + radius[j]);    // normal stretch, tension positive
+
+      int state = b.state;
+      if (state == LB_INTACT && xn > p.xb) {
+        // tensile break: both springs let go
+        b.state = LB_BROKEN_TENSION;
+        b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
+        state = LB_BROKEN_TENSION;
+      }
+      if (state != LB_INTACT && xn >= 0.0) {
+        // open contact: no force, no memory
+        b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
+        b.dx_prev[0] = dx;
+        b.dx_prev[1] = dy;
+        b.dx_prev[2] = dz;
+        continue;
+      }
+
+      const double fn = p.kn * xn;    // normal force, tension positive
+      double fsx = 0.0, fsy = 0.0, fsz = 0.0, es = 0.0;
+
+      if (SHEAR && p.ks > 0.0) {
+        double sx = b.shear[0], sy = b.shear[1], sz = b.shear[2];
+        // rotate the spring into the new tangent plane, keeping its length
+        const double sn = sx * nx + sy * ny + sz * nz;
+        if (sn != 0.0) {
+          const double old2 = sx * sx + sy * sy + sz * sz;
+          sx -= sn * nx;
+          sy -= sn * ny;
+          sz -= sn * nz;
+          const double new2 = sx * sx + sy * sy + sz * sz;
+          if (new2 > 0.0) {
+            const double scale = sqrt(old2 / new2);
+            sx *= scale;
+            sy *= scale;
+            sz *= scale;
+          }
+        }
+        // add the tangential part of this step's relative displacement
+        const double ddx = dx - b.dx_prev[0], ddy = dy - b.dx_prev[1], ddz = dz - b.dx_prev[2];
+        const double dn = ddx * nx + ddy * ny + ddz * nz;
+        sx += ddx - dn * nx;
+        sy += ddy - dn * ny;
+        sz += ddz - dn * nz;
+
+        const double s2 = sx * sx + sy * sy + sz * sz;
+        const double fs2 = p.ks * p.ks * s2;
+        if (state == LB_INTACT) {
+          const double limit = p.fs0 - p.mu_p * fn;    // intact-bond Coulomb limit
+          if (fs2 > limit * limit || limit < 0.0) {
+            b.state = LB_BROKEN_SHEAR;
+            state = LB_BROKEN_SHEAR;
+          }
+        }
+        if (state != LB_INTACT) {
+          if (xn >= 0.0) {
+            // broken in shear while in tension: the contact is open
+            b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
+            b.dx_prev[0] = dx;
+            b.dx_prev[1] = dy;
+            b.dx_prev[2] = dz;
+            continue;
+          }
+          const double limit = -p.mu_p * fn;    // sliding friction of a contact
+          if (fs2 > limit * limit) {
+            const double scale = (s2 > 0.0) ? limit / (p.ks * sqrt(s2)) : 0.0;
+            sx *= scale;
+            sy *= scale;
+            sz *= scale;
+          }
+        }
+        b.shear[0] = sx;
+        b.shear[1] = sy;
+        b.shear[2] = sz;
+        fsx = -p.ks * sx;
+        fsy = -p.ks * sy;
+        fsz = -p.ks * sz;
+        if (EVFLAG) es = 0.5 * p.ks * (sx * sx + sy * sy + sz * sz);
+      }
+      b.dx_prev[0] = dx;
+      b.dx_prev[1] = dy;
+      b.dx_prev[2] = dz;
+      if (state != LB_INTACT) ncontact++;
+
+      // force on the owner i; the partner gets the opposite
+      const double fx = -fn * nx + fsx, fy = -fn * ny + fsy, fz = -fn * nz + fsz;
+      f[i][0] += fx;
+      f[i][1] += fy;
+      f[i][2] += fz;
+      f[j][0] -= fx;
+      f[j][1] -= fy;
+      f[j][2] -= fz;
+
+      if (EVFLAG) {
+        const double e = eflag_either ? 0.5 * fn * xn + es : 0.0;
+        ev_tally_xyz(i, j, nlocal, 1, e, 0.0, fx, fy, fz, dx, dy, dz);
+      }
+    }
+  }
+  ncontact_active = ncontact;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLatticeBond::write_restart_settings(FILE *fp)
+{
+  fwrite(&tolerance, sizeof(double), 1, fp);
+  fwrite(&maxslot, sizeof(int), 1, fp);
+  fwrite(&cut_user, sizeof(double), 1, fp);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLatticeBond::read_restart_settings(FILE *fp)
+{
+  if (comm->me == 0) {
+    utils::sfread(FLERR, &tolerance, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &maxslot, sizeof(int), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &cut_user, sizeof(double), 1, fp, nullptr, error);
+  }
+  MPI_Bcast(&tolerance, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&maxslot, 1, MPI_INT, 0, world);
+  MPI_Bcast(&cut_user, 1, MPI_DOUBLE, 0, world);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLatticeBond::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      fwrite(&coeff_set[i][j], sizeof(int), 1, fp);
+      if (coeff_set[i][j]) {
+        fwrite(&params[i][j], sizeof(BondParams), 1, fp);
+        fwrite(&bondable[i][j], sizeof(int), 1, fp);
+      }
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLatticeBond::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  const int me = comm->me;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (me == 0) utils::sfread(FLERR, &coeff_set[i][j], sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&coeff_set[i][j], 1, MPI_INT, 0, world);
+      if (coeff_set[i][j]) {
+        if (me == 0) {
+          utils::sfread(FLERR, &params[i][j], sizeof(BondParams), 1, fp, nullptr, error);
+          utils::sfread(FLERR, &bondable[i][j], sizeof(int), 1, fp, nullptr, error);
+        }
+        MPI_Bcast(&params[i][j], 5, MPI_DOUBLE, 0, world);
+        MPI_Bcast(&bondable[i][j], 1, MPI_INT, 0, world);
+      }
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairLatticeBond::memory_usage()
+{
+  double bytes = Pair::memory_usage();
+  bytes += (double) partner_nmax * maxslot * sizeof(int);
+  bytes += (double) cand_i.capacity() * 2 * sizeof(int);
+  return bytes;
+}

@@ -1,0 +1,83 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
+
+   pair_style lattice/bond: bonds between touching particles with a normal
+   spring Kn that breaks in tension past Xb and an incremental shear spring
+   Ks capped by the Coulomb limit Fs0 - mu_p*Fn; broken bonds and new
+   contacts are repulsive-only frictional contacts.  Liu, Pollard & Shi
+   (2013), Liu et al. (2017), Li et al. (2018).
+------------------------------------------------------------------------- */
+
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(lattice/bond,PairLatticeBond);
+// clang-format on
+#else
+
+#ifndef LMP_PAIR_LATTICE_BOND_H
+#define LMP_PAIR_LATTICE_BOND_H
+
+#include "pair.h"
+
+#include <string>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixLatticeBondStore;
+
+class PairLatticeBond : public Pair {
+ public:
+  PairLatticeBond(class LAMMPS *);
+  ~PairLatticeBond() override;
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  double memory_usage() override;
+
+  // bond parameters of one type pair (SI: N/m, N/m, m, N, -)
+  struct BondParams {
+    double kn, ks, xb, fs0, mu_p;
+  };
+
+  FixLatticeBondStore *store() const { return fix_store; }
+  // records of local atoms whose partner is a ghost/local index, -1 if absent
+  const int *partner_index() const { return partner_idx; }
+  const BondParams &params_of(int itype, int jtype) const { return params[itype][jtype]; }
+  bigint active_contacts() const { return ncontact_active; }
+
+ protected:
+  BondParams **params;
+  int **bondable;      // 1 if touching particles of this type pair are bonded at the first run
+  int **coeff_set;     // 1 if pair_coeff was given for this type pair
+  double tolerance;    // bond if r < (ri + rj)(1 + tolerance) at the first run
+  int maxslot;         // records per atom
+  double cut_user;     // cutoff keyword, 0 = automatic
+  double cut_global;
+
+  std::string store_id;
+  FixLatticeBondStore *fix_store;
+
+  int *partner_idx;    // local index of each record's partner, refreshed after reneighbouring
+  int partner_nmax;
+  std::vector<int> cand_i, cand_j;    // unbonded pairs that may come into contact
+  bigint ncontact_active;             // records in compressive contact at the last compute
+  int any_shear;                      // 1 if some type pair has Ks > 0
+
+  void allocate();
+  void create_bonds();
+  void refresh_partners();
+  void detect_new_contacts();
+  template <int EVFLAG, int SHEAR> void eval();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif
