@@ -2,20 +2,30 @@
    BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
    fix lattice/viscous: F = -eta * v on every atom of the group
    (Liu et al. 2013 eq. 7; Li et al. 2018 eq. 8).
+
+   As in the papers' leapfrog scheme the force uses the velocity available
+   at force time, v(t - dt/2).  At the start of a later run (or after
+   read_restart) only v(t) is known, so the force of the last step is kept
+   per atom and reapplied: a run split in pieces, or interrupted by a
+   restart, follows the same trajectory as one uninterrupted run.
 ------------------------------------------------------------------------- */
 
 #include "fix_lattice_viscous.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "error.h"
-#include "update.h"
+#include "memory.h"
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
+static constexpr int NPERATOM = 3;
+
 /* ---------------------------------------------------------------------- */
 
-FixLatticeViscous::FixLatticeViscous(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
+FixLatticeViscous::FixLatticeViscous(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), fdamp(nullptr), fdamp_valid(0)
 {
   if (narg != 4)
     error->all(FLERR, "Illegal fix lattice/viscous command: expected fix ID group lattice/viscous eta");
@@ -24,6 +34,24 @@ FixLatticeViscous::FixLatticeViscous(LAMMPS *lmp, int narg, char **arg) : Fix(lm
     error->all(FLERR, "fix lattice/viscous eta = {} is out of range: need eta >= 0 (force/velocity)",
                eta);
   dynamic_group_allow = 1;
+  restart_global = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  maxexchange = NPERATOM;
+
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixLatticeViscous::~FixLatticeViscous()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(fdamp);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -37,7 +65,18 @@ int FixLatticeViscous::setmask()
 
 void FixLatticeViscous::setup(int vflag)
 {
-  post_force(vflag);
+  if (!fdamp_valid) {
+    post_force(vflag);
+    return;
+  }
+  double **f = atom->f;
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit) {
+      f[i][0] += fdamp[i][0];
+      f[i][1] += fdamp[i][1];
+      f[i][2] += fdamp[i][2];
+    }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -50,8 +89,112 @@ void FixLatticeViscous::post_force(int /*vflag*/)
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
     if (mask[i] & groupbit) {
-      f[i][0] -= eta * v[i][0];
-      f[i][1] -= eta * v[i][1];
-      f[i][2] -= eta * v[i][2];
+      fdamp[i][0] = -eta * v[i][0];
+      fdamp[i][1] = -eta * v[i][1];
+      fdamp[i][2] = -eta * v[i][2];
+      f[i][0] += fdamp[i][0];
+      f[i][1] += fdamp[i][1];
+      f[i][2] += fdamp[i][2];
     }
+  fdamp_valid = 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeViscous::grow_arrays(int nmax)
+{
+  memory->grow(fdamp, nmax, 3, "lattice/viscous:fdamp");
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeViscous::copy_arrays(int i, int j, int /*delflag*/)
+{
+  for (int k = 0; k < 3; k++) fdamp[j][k] = fdamp[i][k];
+}
+
+/* ----------------------------------------------------------------------
+   an atom created during a run: damp it with its own velocity
+------------------------------------------------------------------------- */
+
+void FixLatticeViscous::set_arrays(int i)
+{
+  for (int k = 0; k < 3; k++) fdamp[i][k] = -eta * atom->v[i][k];
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeViscous::pack_exchange(int i, double *buf)
+{
+  for (int k = 0; k < 3; k++) buf[k] = fdamp[i][k];
+  return NPERATOM;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeViscous::unpack_exchange(int nlocal, double *buf)
+{
+  for (int k = 0; k < 3; k++) fdamp[nlocal][k] = buf[k];
+  return NPERATOM;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeViscous::pack_restart(int i, double *buf)
+{
+  buf[0] = NPERATOM + 1;
+  return 1 + pack_exchange(i, buf + 1);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeViscous::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeViscous::size_restart(int /*i*/)
+{
+  return NPERATOM + 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeViscous::maxsize_restart()
+{
+  return NPERATOM + 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeViscous::write_restart(FILE *fp)
+{
+  if (comm->me == 0) {
+    double list[2] = {(double) fdamp_valid, eta};
+    int size = sizeof(list);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), 2, fp);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   the stored force is reused only if eta is unchanged
+------------------------------------------------------------------------- */
+
+void FixLatticeViscous::restart(char *buf)
+{
+  auto list = (double *) buf;
+  fdamp_valid = (static_cast<int>(list[0]) == 1 && list[1] == eta) ? 1 : 0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixLatticeViscous::memory_usage()
+{
+  return (double) atom->nmax * NPERATOM * sizeof(double);
 }

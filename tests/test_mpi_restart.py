@@ -1,0 +1,149 @@
+"""Rank-count independence and restart continuity of a fracturing run.
+
+The deck is the 2D uniaxial tension example (inputs/in.tension2d) at N = 15
+(247 particles), pulled at 0.02 m/s per side: elastic up to step ~4420, a
+crack crosses the block between steps ~4425 and ~4470.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from conftest import run_deck
+
+ROOT = Path(__file__).resolve().parent.parent
+DECK = (ROOT / "inputs" / "in.tension2d").read_text()
+DECK_ARGS = ["-var", "N", "15", "-var", "vpull", "0.02"]
+D = 1.0e-3  # particle diameter (m)
+
+
+def read_dump(path: Path) -> np.ndarray:
+    """Rows of a text dump sorted by id: id type x y z [extra...]."""
+    lines = path.read_text().splitlines()
+    start = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS")) + 1
+    data = np.array([[float(v) for v in l.split()] for l in lines[start:]])
+    return data[np.argsort(data[:, 0])]
+
+
+def by_initial_position(work: Path, step: int) -> np.ndarray:
+    """Dump rows of ``step`` ordered by each particle's initial lattice site.
+
+    create_atoms numbers particles in rank order, so IDs differ between rank
+    counts; the site at step 0 identifies a particle independently of them.
+    """
+    start = read_dump(work / "dump.tension2d.0")
+    order = np.lexsort((np.round(start[:, 2] / D, 6), np.round(start[:, 3] / D, 6)))
+    ids = start[order, 0]
+    rows = read_dump(work / f"dump.tension2d.{step}")
+    index = {int(i): k for k, i in enumerate(rows[:, 0])}
+    return rows[[index[int(i)] for i in ids]]
+
+
+def result_numbers(output: str) -> tuple[float, float]:
+    """Peak stress (MPa) and broken-in-tension count from the deck's RESULT lines."""
+    peak = broken = None
+    for line in output.splitlines():
+        if line.startswith("RESULT peak tensile stress"):
+            peak = float(line.split("=")[1].split()[0])
+        if line.startswith("RESULT broken bonds"):
+            broken = float(line.split(":")[1].split()[0])
+    assert peak is not None and broken is not None, output[-2000:]
+    return peak, broken
+
+
+@pytest.fixture(scope="module")
+def runs_by_rank(tmp_path_factory):
+    """The same deck on 1, 2 and 3 ranks, with dumps every 2000 steps."""
+    out = {}
+    for np_ in (1, 2, 3):
+        work = tmp_path_factory.mktemp(f"np{np_}")
+        res = run_deck(DECK, work, np=np_, args=DECK_ARGS + ["-var", "steps", "6000",
+                                                            "-var", "dumpevery", "1000"])
+        assert res.returncode == 0, res.output[-3000:]
+        out[np_] = (work, res)
+    return out
+
+
+@pytest.mark.mpi
+def test_positions_identical_before_first_break(runs_by_rank):
+    work1, res1 = runs_by_rank[1]
+    # the deck's thermo shows no broken bond up to step 4000
+    steps = res1.column("Step")
+    broken = res1.column("c_bonds[2]") + res1.column("c_bonds[3]")
+    assert broken[steps == 4000][0] == 0 and broken[-1] > 0
+    for np_ in (2, 3):
+        work, _ = runs_by_rank[np_]
+        for step in (1000, 2000, 3000, 4000):
+            a = by_initial_position(work1, step)
+            b = by_initial_position(work, step)
+            # only the order of force summation differs between rank counts:
+            # differences stay at round-off, 1e-16 of the ~1e-2 m coordinates
+            # times a few thousand steps, far below 1e-12 of a diameter
+            assert np.max(np.abs(a[:, 2:5] - b[:, 2:5])) < 1e-12 * D
+
+
+@pytest.mark.mpi
+def test_peak_stress_and_broken_bonds_agree_across_ranks(runs_by_rank):
+    peak1, broken1 = result_numbers(runs_by_rank[1][1].output)
+    assert broken1 > 0  # the run really fractured
+    for np_ in (2, 3):
+        peak, broken = result_numbers(runs_by_rank[np_][1].output)
+        assert peak == pytest.approx(peak1, rel=0.01)
+        assert broken == pytest.approx(broken1, rel=0.01)
+
+
+RESTART_TAIL = """
+write_restart   restart.mid
+run             1000
+write_dump      all custom final.dump id type x y z vx vy c_nb modify sort id format float %.17g
+"""
+
+RESUME = """
+read_restart    restart.mid
+neighbor        1.0e-4 bin
+neigh_modify    every 1 delay 0 check yes
+compute         nb all lattice/bonds
+compute         bonds all lattice/bonds
+fix             ftop top setforce NULL 0.0 NULL
+fix             fbot bottom setforce NULL 0.0 NULL
+fix             integrate all nve
+fix             damp inner lattice/viscous {eta}
+thermo_style    custom step c_bonds[1] c_bonds[2] c_bonds[3] c_bonds[4]
+thermo          500
+run             1000
+write_dump      all custom final.dump id type x y z vx vy c_nb modify sort id format float %.17g
+"""
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("np_write,np_read", [(1, 1), (2, 1), (1, 2)])
+def test_restart_mid_fracture_continues_identically(tmp_path, np_write, np_read):
+    # stop at step 4440: the crack is half-way across the block
+    first = run_deck(DECK + RESTART_TAIL, tmp_path / "a", np=np_write,
+                     args=DECK_ARGS + ["-var", "steps", "4440", "-var", "dumpevery", "1000000"])
+    assert first.returncode == 0, first.output[-3000:]
+    broken_at_restart = first.column("c_bonds[2]", run=0)[-1]
+    final_broken = first.column("c_bonds[2]", run=1)[-1]
+    assert 0 < broken_at_restart < final_broken, "restart must be written while the crack grows"
+
+    eta = (8 * 2650 * np.sqrt(3) * D**2 / 2 * 6.5874e10) ** 0.5 / 15
+    # the resumed run reads the restart file written by the first one
+    (tmp_path / "b").mkdir()
+    (tmp_path / "b" / "restart.mid").write_bytes((tmp_path / "a" / "restart.mid").read_bytes())
+    resumed = run_deck(RESUME.format(eta=eta), tmp_path / "b", np=np_read)
+    assert resumed.returncode == 0, resumed.output[-3000:]
+    assert "pair_style lattice/bond: created" not in resumed.output, "bonds must not be re-created"
+
+    a = read_dump(tmp_path / "a" / "final.dump")
+    b = read_dump(tmp_path / "b" / "final.dump")
+    # bond states: intact-bond count per atom identical
+    assert np.array_equal(a[:, 7], b[:, 7])
+    # trajectory: same to round-off (summation order changes with atom order)
+    assert np.max(np.abs(a[:, 2:5] - b[:, 2:5])) < 1e-9 * D
+    tail_a = first.thermo[-1]
+    tail_b = resumed.thermo[-1]
+    for col in ("c_bonds[1]", "c_bonds[2]", "c_bonds[3]"):
+        assert tail_a[col][-1] == tail_b[col][-1]
