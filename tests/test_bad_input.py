@@ -1,0 +1,127 @@
+"""Bad input stops with an error that names the bad value and the valid range."""
+
+from __future__ import annotations
+
+import pytest
+
+from conftest import run_deck
+
+HEAD = """
+units si
+dimension 2
+boundary f f p
+atom_style {atom_style}
+newton {newton}
+region box block -0.01 0.01 -0.01 0.01 -0.001 0.001
+create_box 2 box
+create_atoms 1 single 0 0 0
+create_atoms 1 single 0.001 0 0
+create_atoms 2 single 0.0005 0.000866025403784 0
+"""
+SPHERE = "set atom * diameter 0.001\nset atom * mass 2.295e-3\n"
+GOOD = "6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915"
+TAIL = "fix 1 all nve\ntimestep 1e-8\nrun 10\n"
+
+
+def deck(pair_lines: str, atom_style: str = "sphere", newton: str = "on", extra: str = "",
+         setup: str = SPHERE) -> str:
+    return HEAD.format(atom_style=atom_style, newton=newton) + setup + pair_lines + extra + TAIL
+
+
+def pair(c11: str = GOOD, c12: str = GOOD, c22: str = GOOD, style: str = "") -> str:
+    lines = f"pair_style lattice/bond {style}\n"
+    for ij, c in (("1 1", c11), ("1 2", c12), ("2 2", c22)):
+        if c is not None:
+            lines += f"pair_coeff {ij} {c}\n"
+    return lines
+
+
+CASES = {
+    "negative Kn": (pair(c12="-1 2.3715e10 1.9011e-7 3.6905e4 0.23915"),
+                    ["Kn = -1", "need Kn > 0"]),
+    "negative Ks": (pair(c11="6.5874e10 -5 1.9011e-7 3.6905e4 0.23915"),
+                    ["Ks = -5", "need Ks >= 0"]),
+    "zero Xb": (pair(c22="6.5874e10 2.3715e10 0 3.6905e4 0.23915"), ["Xb = 0", "need Xb > 0"]),
+    "negative Xb": (pair(c22="6.5874e10 2.3715e10 -1e-7 3.6905e4 0.23915"),
+                    ["Xb = -1e-07", "need Xb > 0"]),
+    "negative Fs0": (pair(c11="6.5874e10 2.3715e10 1.9011e-7 -1 0.23915"),
+                     ["Fs0 = -1", "need Fs0 >= 0"]),
+    "negative mu_p": (pair(c11="6.5874e10 2.3715e10 1.9011e-7 3.6905e4 -0.1"),
+                      ["mu_p = -0.1", "need mu_p >= 0"]),
+    "too few coefficients": (pair(c11="6.5874e10 2.3715e10"), ["I J Kn Ks Xb Fs0 mu_p", "got 4"]),
+    "unknown pair_coeff keyword": (pair(c11=GOOD + " glue yes"), ["unknown keyword glue"]),
+    "missing pair_coeff": (pair(c12=None), ["pair_coeff 1 2 is missing"]),
+    "no pair_coeff at all": ("pair_style lattice/bond\n", ["pair_coeff 1 1 is missing"]),
+    "tolerance out of range": (pair(style="tolerance 0.5"),
+                               ["tolerance 0.5 is out of range", "0 <= tolerance < 0.4"]),
+    "maxslot out of range": (pair(style="maxslot 0"), ["maxslot 0 is out of range", "1 <= maxslot <= 64"]),
+    "unknown pair_style keyword": (pair(style="damping 3"), ["Unknown pair_style lattice/bond keyword damping"]),
+    "cutoff shorter than bonds": (pair(style="cutoff 0.0005"),
+                                  ["cutoff 0.0005 is too small", "use cutoff >= 0.00101"]),
+    "wrong atom style": ("", ["requires atom_style sphere"]),
+    "newton off": (pair(), ["requires newton on"]),
+    "viscous eta negative": (pair() + "fix v all lattice/viscous -3\n", ["eta = -3", "need eta >= 0"]),
+    "wall bad face": (pair() + "fix w all lattice/wall top 0 1 1 0\n", ["face top is not valid"]),
+    "wall face z in 2d": (pair() + "fix w all lattice/wall zlo 0 1 1 0\n", ["not allowed in a 2d"]),
+    "wall negative Kn": (pair() + "fix w all lattice/wall ylo 0 -1 1 0\n", ["Kn = -1", "need Kn > 0"]),
+    "wall negative mu": (pair() + "fix w all lattice/wall ylo 0 1 1 -0.2\n", ["mu = -0.2", "need mu >= 0"]),
+    "too many records": (pair(style="maxslot 1"), ["more than maxslot = 1", "increase"]),
+}
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_bad_input_is_rejected_with_named_value(tmp_path, name):
+    lines, expected = CASES[name]
+    kwargs = {}
+    if name == "wrong atom style":
+        kwargs = dict(atom_style="atomic", setup="mass * 1.0\n")
+        lines = pair()
+    if name == "newton off":
+        kwargs = dict(newton="off")
+    res = run_deck(deck(lines, **kwargs), tmp_path)
+    assert res.returncode != 0, f"{name}: the run did not stop\n{res.output[-1500:]}"
+    for fragment in expected:
+        assert fragment in res.output, f"{name}: {fragment!r} missing in\n{res.output[-1500:]}"
+    assert "Step" not in res.output or "ERROR" in res.output
+
+
+LOST_PARTNER = """
+units si
+dimension 2
+boundary f f p
+atom_style sphere
+newton on
+region box block -0.01 0.01 -0.01 0.01 -0.001 0.001
+create_box 1 box
+create_atoms 1 single -0.0005 0 0
+create_atoms 1 single 0.0005 0 0
+set atom * diameter 0.001
+set atom * mass 1.0
+# a weak, unbreakable bond: the particles fly apart and stay bonded
+pair_style lattice/bond
+pair_coeff 1 1 1.0 0.0 1.0 0.0 0.0
+neighbor 1e-4 bin
+velocity all set 0 0 0 units box
+set atom 1 vx -10
+set atom 2 vx 10
+fix 1 all nve
+timestep 1e-6
+run 200
+"""
+
+
+@pytest.mark.mpi
+def test_bond_longer_than_ghost_cutoff_is_an_error(tmp_path):
+    # on 2 ranks split along x the partner leaves the ghost shell
+    res = run_deck(LOST_PARTNER, tmp_path, np=2)
+    assert res.returncode != 0
+    assert "lost its partner" in res.output
+    assert "increase neighbor skin or comm_modify cutoff" in res.output
+
+
+def test_same_stretched_bond_on_one_rank_keeps_working(tmp_path):
+    # on one rank without periodic images the partner is always local
+    res = run_deck(LOST_PARTNER + "variable r equal x[2]-x[1]\nprint \"SEP $(v_r)\"\n", tmp_path)
+    assert res.returncode == 0, res.output[-1500:]
+    sep = float(res.output.split("SEP ")[1].split()[0])
+    assert sep == pytest.approx(0.001 + 20 * 200e-6, rel=1e-3)
