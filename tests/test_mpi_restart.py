@@ -147,3 +147,14 @@ def test_restart_mid_fracture_continues_identically(tmp_path, np_write, np_read)
     tail_b = resumed.thermo[-1]
     for col in ("c_bonds[1]", "c_bonds[2]", "c_bonds[3]"):
         assert tail_a[col][-1] == tail_b[col][-1]
+
+
+def test_write_data_warns_and_keeps_coefficients(tmp_path):
+    deck = DECK.replace("run             ${steps}", "run 10\nwrite_data data.out pair ij")
+    res = run_deck(deck, tmp_path, args=DECK_ARGS + ["-var", "steps", "10"])
+    assert res.returncode == 0, res.output[-2000:]
+    assert "write_data stores the pair_style lattice/bond coefficients but not the bond" in res.output
+    text = (tmp_path / "data.out").read_text()
+    section = text.split("PairIJ Coeffs")[1].splitlines()
+    coeffs = next(line for line in section if line.startswith("1 1 ")).split()
+    assert [float(v) for v in coeffs[2:]] == [6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915]

@@ -43,7 +43,7 @@ PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
 {
   single_enable = 0;
   restartinfo = 1;
-  writedata = 0;
+  writedata = 1;
   finitecutflag = 1;
   centroidstressflag = CENTROID_SAME;
   store_id = "LATTICE_BOND_STORE";
@@ -614,6 +614,49 @@ void PairLatticeBond::read_restart(FILE *fp)
         MPI_Bcast(&params[i][j], 5, MPI_DOUBLE, 0, world);
         MPI_Bcast(&bondable[i][j], 1, MPI_INT, 0, world);
       }
+    }
+}
+
+/* ----------------------------------------------------------------------
+   write_data: coefficients only; the bond network lives in restart files
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::warn_data_file_has_no_bonds()
+{
+  error->warning(FLERR, "write_data stores the pair_style lattice/bond coefficients but not the bond "
+                 "network (intact and broken bonds, contacts, shear springs): a run from this data "
+                 "file bonds all touching particles anew. Use write_restart to keep the network");
+}
+
+/* ----------------------------------------------------------------------
+   "Pair Coeffs" section (write_data default): only I I pairs fit in it
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::write_data(FILE *fp)
+{
+  warn_data_file_has_no_bonds();
+  if (atom->ntypes > 1)
+    error->warning(FLERR, "write_data writes only I I lattice/bond coefficients; use "
+                   "'write_data file pair ij' to keep the I J ones");
+  for (int i = 1; i <= atom->ntypes; i++) {
+    const BondParams &p = params[i][i];
+    utils::print(fp, "{} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}{}\n", i, p.kn, p.ks, p.xb, p.fs0,
+                 p.mu_p, bondable[i][i] ? "" : " bond no");
+  }
+}
+
+/* ----------------------------------------------------------------------
+   "PairIJ Coeffs" section (write_data ... pair ij)
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::write_data_all(FILE *fp)
+{
+  warn_data_file_has_no_bonds();
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      const BondParams &p = params[i][j];
+      utils::print(fp, "{} {} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}{}\n", i, j, p.kn, p.ks, p.xb,
+                   p.fs0, p.mu_p, bondable[i][j] ? "" : " bond no");
     }
 }
 

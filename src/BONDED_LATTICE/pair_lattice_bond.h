@@ -39,6 +39,8 @@ class PairLatticeBond : public Pair {
   void read_restart(FILE *) override;
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
+  void write_data(FILE *) override;
+  void write_data_all(FILE *) override;
   double memory_usage() override;
 
   // bond parameters of one type pair (SI: N/m, N/m, m, N, -)
@@ -71,6 +73,7 @@ class PairLatticeBond : public Pair {
   int any_shear;                      // 1 if some type pair has Ks > 0
 
   void allocate();
+  void warn_data_file_has_no_bonds();
   void create_bonds();
   void refresh_partners();
   void detect_new_contacts();
