@@ -428,22 +428,23 @@ void PairLatticeBond::compute(int eflag, int vflag)
 
 template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
 {
-  double **x = atom->x;
-  double **f = atom->f;
-  const double *radius = atom->radius;
-  const int *type = atom->type;
+  const double *const *const x = atom->x;
+  double *const *const f = atom->f;
+  const double *const radius = atom->radius;
+  const int *const type = atom->type;
   const int nlocal = atom->nlocal;
-  const int *nrec = fix_store->nrec;
+  const int *const nrec = fix_store->nrec;
   bigint ncontact = 0;
 
   for (int i = 0; i < nlocal; i++) {
     const int nr = nrec[i];
     if (!nr) continue;
-    LatticeBondRecord *r = fix_store->records(i);
-    const int *idx = partner_idx + (bigint) i * maxslot;
+    LatticeBondRecord *__restrict r = fix_store->records(i);
+    const int *__restrict idx = partner_idx + (bigint) i * maxslot;
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
     const double radi = radius[i];
     const BondParams *prow = params[type[i]];
+    double fxi = 0.0, fyi = 0.0, fzi = 0.0;    // summed here: fewer stores in the loop
 
     for (int s = 0; s < nr; s++) {
       const int j = idx[s];
@@ -461,7 +462,6 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
       if (state == LB_INTACT && xn > p.xb) {
         // tensile break: both springs let go
         b.state = LB_BROKEN_TENSION;
-        b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
         state = LB_BROKEN_TENSION;
       }
       if (state != LB_INTACT && xn >= 0.0) {
@@ -478,13 +478,15 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
 
       if (SHEAR && p.ks > 0.0) {
         double sx = b.shear[0], sy = b.shear[1], sz = b.shear[2];
-        // rotate the spring into the new tangent plane, keeping its length
+        // rotate the spring into the new tangent plane: drop its normal part;
+        // restoring its length matters only when the pair turned noticeably
+        // in one step (relative change sn^2/|s|^2 > 1e-12), so test first
         const double sn = sx * nx + sy * ny + sz * nz;
-        if (sn != 0.0) {
-          const double old2 = sx * sx + sy * sy + sz * sz;
-          sx -= sn * nx;
-          sy -= sn * ny;
-          sz -= sn * nz;
+        const double old2 = sx * sx + sy * sy + sz * sz;
+        sx -= sn * nx;
+        sy -= sn * ny;
+        sz -= sn * nz;
+        if (sn * sn > 1.0e-12 * old2) {
           const double new2 = sx * sx + sy * sy + sz * sz;
           if (new2 > 0.0) {
             const double scale = sqrt(old2 / new2);
@@ -541,9 +543,9 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
 
       // force on the owner i; the partner gets the opposite
       const double fx = -fn * nx + fsx, fy = -fn * ny + fsy, fz = -fn * nz + fsz;
-      f[i][0] += fx;
-      f[i][1] += fy;
-      f[i][2] += fz;
+      fxi += fx;
+      fyi += fy;
+      fzi += fz;
       f[j][0] -= fx;
       f[j][1] -= fy;
       f[j][2] -= fz;
@@ -553,6 +555,9 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
         ev_tally_xyz(i, j, nlocal, 1, e, 0.0, fx, fy, fz, dx, dy, dz);
       }
     }
+    f[i][0] += fxi;
+    f[i][1] += fyi;
+    f[i][2] += fzi;
   }
   ncontact_active = ncontact;
 }
