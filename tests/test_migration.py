@@ -1,0 +1,71 @@
+"""Bond records travel with their atoms: a vibrating bonded block drifts once
+around a periodic box, crossing subdomain and periodic boundaries, and ends
+where the 1-rank run ends, with the same bonds and spring energy."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from conftest import run_deck
+
+D = 1.0e-3
+DECK = f"""
+units           si
+dimension       2
+boundary        p p p
+atom_style      sphere
+newton          on
+lattice         hex {D}
+region          box block 0 24 0 6 -0.5 0.5
+create_box      1 box
+region          block block 2 10 1 4 -0.5 0.5
+create_atoms    1 region block
+reset_atoms     id sort yes
+set             type 1 diameter {D}
+set             type 1 mass 2.295e-3
+pair_style      lattice/bond
+pair_coeff      1 1 6.5874e10 2.3715e10 1.0 1.0e9 0.23915
+neighbor        {0.1 * D} bin
+# a random vibration of ~0.02 m/s (seeded per atom position, so it does not
+# depend on the rank count) plus a drift of one box length in the run
+velocity        all create 1.0e20 4928459 loop geom
+variable        vx atom vx+0.024/(5000*1.0e-8)
+velocity        all set v_vx NULL 0 units box
+compute         b all lattice/bonds
+thermo_style    custom step pe ke c_b[1] c_b[2] c_b[3] c_b[4]
+thermo          1000
+fix             nve all nve
+timestep        1.0e-8
+run             5000
+write_dump      all custom final.dump id x y vx vy modify sort id format float %.17g
+"""
+
+
+def read(path):
+    lines = path.read_text().splitlines()
+    start = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS")) + 1
+    return np.array([[float(v) for v in l.split()] for l in lines[start:]])
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("np_", [2, 3])
+def test_drift_around_periodic_box(tmp_path, np_):
+    one = run_deck(DECK, tmp_path / "one")
+    many = run_deck(DECK, tmp_path / "many", np=np_)
+    assert one.returncode == 0 and many.returncode == 0, many.output[-2000:]
+    t1, tn = one.thermo[0], many.thermo[0]
+    # the vibration is elastic: no bond breaks, energy is exchanged
+    assert t1["c_b[1]"][-1] == t1["c_b[1]"][0] and t1["c_b[2]"][-1] == 0
+    assert np.all(tn["c_b[1]"] == t1["c_b[1]"])
+    assert t1["PotEng"][-1] > 0
+    np.testing.assert_allclose(tn["PotEng"], t1["PotEng"], rtol=1e-9)
+    a, b = read(tmp_path / "one" / "final.dump"), read(tmp_path / "many" / "final.dump")
+    assert np.array_equal(a[:, 0], b[:, 0])
+    # positions (wrapped into the box) agree to round-off
+    delta = a[:, 1:3] - b[:, 1:3]
+    delta[:, 0] -= 0.024 * np.round(delta[:, 0] / 0.024)
+    assert np.max(np.abs(delta)) < 1e-12 * D
+    # the block really travelled across the ranks: many reneighbourings
+    builds = int(many.output.split("Neighbor list builds =")[1].split()[0])
+    assert builds > 50
