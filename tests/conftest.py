@@ -8,7 +8,6 @@ Two ways to run LAMMPS:
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import pytest
@@ -35,9 +34,3 @@ def lmp_instance():
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
     yield lmp
     lmp.close()
-
-
-def first_float(pattern: str, text: str) -> float:
-    m = re.search(pattern, text)
-    assert m, f"pattern {pattern!r} not found"
-    return float(m.group(1))

@@ -3,8 +3,9 @@
 
    compute lattice/bonds
    global vector: [1] intact bonds, [2] bonds broken in tension,
-   [3] bonds broken in shear, [4] active (compressed) contacts, counting
-   broken bonds and unbonded contacts.  Each bond is counted once.
+   [3] bonds broken in shear, [4] active contacts (broken bonds and unbonded
+   pairs that overlap).  Each bond is counted once, by its lower-tag atom,
+   if that atom is in the compute's group.
    per-atom vector: intact bonds of each atom (for dumps and OVITO).
 ------------------------------------------------------------------------- */
 
@@ -59,16 +60,30 @@ void ComputeLatticeBonds::compute_vector()
 {
   invoked_vector = update->ntimestep;
   FixLatticeBondStore *store = pair->store();
-  double local[4] = {0.0, 0.0, 0.0, (double) pair->active_contacts()};
-  if (store) {
+  const int *idx = pair->partner_index();
+  double local[4] = {0.0, 0.0, 0.0, 0.0};
+  if (store && idx) {
+    double **x = atom->x;
+    const double *radius = atom->radius;
     const int *mask = atom->mask;
+    const int maxslot = store->maxslot;
     for (int i = 0; i < atom->nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
       const LatticeBondRecord *r = store->records(i);
       for (int s = 0; s < store->nrec[i]; s++) {
-        if (r[s].state == LB_INTACT) local[0] += 1.0;
-        else if (r[s].state == LB_BROKEN_TENSION) local[1] += 1.0;
-        else if (r[s].state == LB_BROKEN_SHEAR) local[2] += 1.0;
+        const int state = r[s].state;
+        if (state == LB_INTACT) {
+          local[0] += 1.0;
+          continue;
+        }
+        if (state == LB_BROKEN_TENSION) local[1] += 1.0;
+        else if (state == LB_BROKEN_SHEAR) local[2] += 1.0;
+        // a broken bond or unbonded pair is an active contact while it overlaps
+        const int j = idx[(bigint) i * maxslot + s];
+        if (j < 0) continue;
+        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+        const double touch = radius[i] + radius[j];
+        if (dx * dx + dy * dy + dz * dz < touch * touch) local[3] += 1.0;
       }
     }
   }

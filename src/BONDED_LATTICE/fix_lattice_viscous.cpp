@@ -1,7 +1,7 @@
 /* ----------------------------------------------------------------------
    BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
    fix lattice/viscous: F = -eta * v on every atom of the group
-   (Liu et al. 2013 eq. 7; Li et al. 2018 eq. 8).
+   (Liu et al. 2013 section 5, damping value eq. 34; Li et al. 2018 eq. 9).
 
    As in the papers' leapfrog scheme the force uses the velocity available
    at force time, v(t - dt/2).  At the start of a later run (or after

@@ -35,6 +35,9 @@ FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "Illegal fix lattice/wall command: expected fix ID group lattice/wall "
                "face position Kn Ks mu [vel v]");
 
+  if (!atom->radius_flag)
+    error->all(FLERR, "fix lattice/wall requires per-atom radii (atom_style sphere)");
+
   const std::string face = arg[3];
   if (face == "xlo" || face == "xhi") dim = 0;
   else if (face == "ylo" || face == "yhi") dim = 1;

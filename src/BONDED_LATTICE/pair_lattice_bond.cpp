@@ -39,7 +39,7 @@ static constexpr int DEFAULT_MAXSLOT = 16;
 PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
     Pair(lmp), params(nullptr), bondable(nullptr), coeff_set(nullptr),
     tolerance(DEFAULT_TOLERANCE), maxslot(DEFAULT_MAXSLOT), cut_user(0.0), cut_global(0.0),
-    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), ncontact_active(0), any_shear(0)
+    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), any_shear(0)
 {
   single_enable = 0;
   restartinfo = 1;
@@ -298,6 +298,10 @@ void PairLatticeBond::refresh_partners()
   tagint *tag = atom->tag;
   const int nlocal = atom->nlocal;
 
+  // the ghost shell every rank is guaranteed to hold: bonds must fit in it
+  const double cutghost = comm->get_comm_cutoff();
+  const double cutghost_sq = cutghost * cutghost;
+
   if (atom->nmax > partner_nmax) {
     partner_nmax = atom->nmax;
     memory->destroy(partner_idx);
@@ -311,19 +315,30 @@ void PairLatticeBond::refresh_partners()
     for (int s = fix_store->nrec[i] - 1; s >= 0; s--) {
       int j = atom->map(r[s].partner);
       if (j >= 0) j = domain->closest_image(i, j);
+      // a stale map entry (deleted atom) must not pass for the partner
+      if (j >= 0 && tag[j] != r[s].partner) j = -1;
       bool drop = false;
       if (j < 0) {
         if (r[s].state == LB_INTACT)
           error->one(FLERR,
-                     "pair_style lattice/bond: bond {}-{} lost its partner (atom {} is not on this "
-                     "rank or its ghosts); the bond is longer than the communication cutoff {}: "
-                     "increase neighbor skin or comm_modify cutoff",
-                     tag[i], r[s].partner, r[s].partner, cut_global + neighbor->skin);
+                     "pair_style lattice/bond: bond {}-{} lost its partner: atom {} is neither on "
+                     "this rank nor a ghost. Either it was deleted or renumbered after the bonds "
+                     "were made (delete_atoms, reset_atoms id), or the bond became longer than the "
+                     "communication cutoff {} (increase neighbor skin or comm_modify cutoff)",
+                     tag[i], r[s].partner, r[s].partner, cutghost);
         drop = (r[s].state == LB_CONTACT);
-      } else if (r[s].state == LB_CONTACT) {
+      } else {
         const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
+        const double rsq = delx * delx + dely * dely + delz * delz;
         const double touch = radius[i] + radius[j];
-        drop = (delx * delx + dely * dely + delz * delz >= touch * touch);
+        if (r[s].state == LB_INTACT && (rsq > cutghost_sq || j == i))
+          error->one(FLERR,
+                     "pair_style lattice/bond: bond {}-{} is {} long, beyond the communication "
+                     "cutoff {}. Either the intact bond stretched that far (raise neighbor skin "
+                     "or comm_modify cutoff), or atoms were renumbered or moved after the bonds "
+                     "were made (reset_atoms id, delete_atoms compress yes, set, displace_atoms)",
+                     tag[i], r[s].partner, sqrt(rsq), sqrt(cutghost_sq));
+        drop = (r[s].state == LB_CONTACT && rsq >= touch * touch);
       }
       if (drop) {
         const int last = fix_store->nrec[i] - 1;
@@ -434,7 +449,6 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
   const int *const type = atom->type;
   const int nlocal = atom->nlocal;
   const int *const nrec = fix_store->nrec;
-  bigint ncontact = 0;
 
   for (int i = 0; i < nlocal; i++) {
     const int nr = nrec[i];
@@ -475,6 +489,19 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
 
       const double fn = p.kn * xn;    // normal force, tension positive
       double fsx = 0.0, fsy = 0.0, fsz = 0.0, es = 0.0;
+
+      if (state == LB_INTACT && !(SHEAR && p.ks > 0.0) && p.fs0 - p.mu_p * fn < 0.0) {
+        // no shear spring: the bond fails in shear only when its Coulomb
+        // limit itself becomes negative (tension above Fs0/mu_p)
+        b.state = LB_BROKEN_SHEAR;
+        state = LB_BROKEN_SHEAR;
+        if (xn >= 0.0) {
+          b.dx_prev[0] = dx;
+          b.dx_prev[1] = dy;
+          b.dx_prev[2] = dz;
+          continue;
+        }
+      }
 
       if (SHEAR && p.ks > 0.0) {
         double sx = b.shear[0], sy = b.shear[1], sz = b.shear[2];
@@ -539,7 +566,6 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
       b.dx_prev[0] = dx;
       b.dx_prev[1] = dy;
       b.dx_prev[2] = dz;
-      if (state != LB_INTACT) ncontact++;
 
       // force on the owner i; the partner gets the opposite
       const double fx = -fn * nx + fsx, fy = -fn * ny + fsy, fz = -fn * nz + fsz;
@@ -559,7 +585,6 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
     f[i][1] += fyi;
     f[i][2] += fzi;
   }
-  ncontact_active = ncontact;
 }
 
 /* ---------------------------------------------------------------------- */

@@ -52,7 +52,6 @@ class PairLatticeBond : public Pair {
   // records of local atoms whose partner is a ghost/local index, -1 if absent
   const int *partner_index() const { return partner_idx; }
   const BondParams &params_of(int itype, int jtype) const { return params[itype][jtype]; }
-  bigint active_contacts() const { return ncontact_active; }
 
  protected:
   BondParams **params;
@@ -69,7 +68,6 @@ class PairLatticeBond : public Pair {
   int *partner_idx;    // local index of each record's partner, refreshed after reneighbouring
   int partner_nmax;
   std::vector<int> cand_i, cand_j;    // unbonded pairs that may come into contact
-  bigint ncontact_active;             // records in compressive contact at the last compute
   int any_shear;                      // 1 if some type pair has Ks > 0
 
   void allocate();
