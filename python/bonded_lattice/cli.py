@@ -1,24 +1,131 @@
-"""Command-line tool ``bonded-lattice``."""
+"""Command-line tool ``bonded-lattice``: convert, generate, run.
+
+    bonded-lattice convert --rock quartz --dim 2
+    bonded-lattice convert --dim 3 --bond 4.6794e7 8.0679e6 1.7037e-7 18.452 0.39645
+    bonded-lattice generate --rock quartz --dim 2 --test tension --n 30 --out tension2d
+    bonded-lattice run --rock quartz --dim 2 --test compression --n 30 --np 2 --out run2d
+"""
 
 from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 from . import __version__
-from .plugin import plugin_path
+
+
+def _rock(args: argparse.Namespace):
+    from .rocks import get_rock
+
+    return get_rock(args.rock)
+
+
+def cmd_convert(args: argparse.Namespace) -> int:
+    from .conversion import bond_to_rock, rock_to_bond
+
+    if args.bond:
+        kn, ks, xb, fs0, mup = args.bond
+        props = bond_to_rock(kn, ks, xb, fs0, mup, args.d, args.dim)
+        print(f"E = {props.E:.6g} Pa, nu = {props.nu:.6g}, Tu = {props.Tu:.6g} Pa, "
+              f"Cu = {props.Cu:.6g} Pa, mu_i = {props.mu_i:.6g}")
+        return 0
+    rock = _rock(args)
+    bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, args.d, args.dim)
+    print(f"# {rock.name} ({rock.source}), d = {args.d} m, {args.dim}D")
+    print(f"Kn = {bond.Kn:.6g}, Ks = {bond.Ks:.6g}, Xb = {bond.Xb:.6g}, Fs0 = {bond.Fs0:.6g}, "
+          f"mu_p = {bond.mu_p:.6g}")
+    print(bond.pair_coeff())
+    return 0
+
+
+def cmd_generate(args: argparse.Namespace) -> int:
+    from .conversion import rock_to_bond
+    from .decks import DeckSpec, write_deck
+    from .experiment import build_lattice, plan_test
+    from .lattice import write_data
+
+    rock = _rock(args)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, args.d, args.dim)
+    lattice = build_lattice(args.dim, args.n, args.d)
+    plan = plan_test(rock, bond, lattice, args.test, args.crossings, args.speed)
+    write_data(lattice, out / "data.lattice", plan.mass)
+    spec = DeckSpec(test=args.test, dim=args.dim, d=args.d, bond=bond, data_file="data.lattice",
+                    area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps, dt=plan.dt,
+                    thermo_every=max(1, plan.steps // 400))
+    write_deck(spec, out / f"in.{args.test}")
+    print(f"wrote {out / 'data.lattice'} ({lattice.n} particles) and {out / ('in.' + args.test)}")
+    print(f"run it with: cd {out} && mpirun -np 2 lmp -in in.{args.test}")
+    return 0
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    from .experiment import run_test, summary_table
+
+    summary = run_test(_rock(args), args.dim, args.test, args.n, args.out, np_=args.np,
+                       d=args.d, crossings=args.crossings, speed=args.speed,
+                       progress=not args.quiet)
+    print(summary_table(summary))
+    print(f"results in {args.out}: summary.json, stress_strain.png"
+          + (", broken_bonds.png" if args.test != "elastic" else ""))
+    return 0
+
+
+def cmd_info(args: argparse.Namespace) -> int:
+    from .plugin import plugin_path
+
+    print(f"bonded-lattice {__version__}")
+    print(f"plugin: {plugin_path()}")
+    return 0
+
+
+def _common(p: argparse.ArgumentParser, test: bool = True) -> None:
+    p.add_argument("--rock", default="quartz", help="rock from the library (default quartz)")
+    p.add_argument("--dim", type=int, choices=(2, 3), default=2)
+    p.add_argument("--d", type=float, default=1.0e-3, help="particle diameter in m (default 1e-3)")
+    if test:
+        p.add_argument("--test", choices=("tension", "compression", "elastic"), default="compression")
+        p.add_argument("--n", type=int, default=30,
+                       help="particles across (2D) or elements along y (3D); default 30")
+        p.add_argument("--crossings", type=float, default=100.0,
+                       help="elastic wave crossings during loading (quasi-static control)")
+        p.add_argument("--speed", type=float, default=None, help="platen speed in m/s (overrides --crossings)")
+        p.add_argument("--out", default="bonded-lattice-run", help="output folder")
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="bonded-lattice", description=__doc__)
+    parser = argparse.ArgumentParser(prog="bonded-lattice",
+                                     description="Bonded close-packed lattice DEM for LAMMPS.")
     parser.add_argument("--version", action="version", version=f"bonded-lattice {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
-    sub.add_parser("info", help="print the package version and the plugin's location")
+
+    p = sub.add_parser("convert", help="rock properties <-> bond parameters")
+    _common(p, test=False)
+    p.add_argument("--bond", type=float, nargs=5, metavar=("Kn", "Ks", "Xb", "Fs0", "mu_p"),
+                   help="convert these bond parameters to rock properties")
+    p.set_defaults(func=cmd_convert)
+
+    p = sub.add_parser("generate", help="write a lattice data file and a test deck")
+    _common(p)
+    p.set_defaults(func=cmd_generate)
+
+    p = sub.add_parser("run", help="generate, run, measure and plot one test")
+    _common(p)
+    p.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_run)
+
+    p = sub.add_parser("info", help="package version and plugin location")
+    p.set_defaults(func=cmd_info)
+
     args = parser.parse_args(argv)
-    if args.command == "info":
-        print(f"bonded-lattice {__version__}")
-        print(f"plugin: {plugin_path()}")
-    return 0
+    try:
+        return args.func(args)
+    except (ValueError, KeyError, RuntimeError, FileNotFoundError) as exc:
+        print(f"bonded-lattice {args.command}: {exc}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":

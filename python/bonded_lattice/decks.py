@@ -74,6 +74,7 @@ def deck_bond(spec: DeckSpec) -> BondParameters:
 
 
 def _header(spec: DeckSpec) -> str:
+    k = "xyz".index(spec.axis) + 1
     title = {
         "tension": "Uniaxial tension between two smooth planes holding the end layers",
         "compression": "Uniaxial compression between two smooth platens (fix lattice/wall, mu 0)",
@@ -99,13 +100,24 @@ pair_style      lattice/bond
 neighbor        {0.1 * spec.d:.6g} bin
 neigh_modify    every 1 delay 0 check yes
 
-# extent of the block along the loading axis ({spec.axis}) and across it (x)
+# extent of the block along the loading axis ({spec.axis})
 variable        lo0 equal $(bound(all,{spec.axis}min))
 variable        hi0 equal $(bound(all,{spec.axis}max))
 variable        H0 equal $(v_hi0-v_lo0)
-variable        W0 equal $(bound(all,xmax)-bound(all,xmin))
-variable        strain equal (bound(all,{spec.axis}max)-bound(all,{spec.axis}min)-${{H0}})/${{H0}}
-variable        lateral equal (bound(all,xmax)-bound(all,xmin)-${{W0}})/${{W0}}
+# strains: least-squares slopes of the displacement against the initial
+# position over all particles (the end and corner particles, held by fewer
+# bonds, move more than the block as a whole)
+compute         disp all displace/atom
+variable        x0 atom x-c_disp[1]
+variable        x0ux atom v_x0*c_disp[1]
+variable        x0sq atom v_x0*v_x0
+variable        a0 atom {spec.axis}-c_disp[{k}]
+variable        a0ua atom v_a0*c_disp[{k}]
+variable        a0sq atom v_a0*v_a0
+compute         lat all reduce sum v_x0 c_disp[1] v_x0ux v_x0sq
+compute         ax all reduce sum v_a0 c_disp[{k}] v_a0ua v_a0sq
+variable        strain equal (count(all)*c_ax[3]-c_ax[1]*c_ax[2])/(count(all)*c_ax[4]-c_ax[1]^2)
+variable        lateral equal (count(all)*c_lat[3]-c_lat[1]*c_lat[2])/(count(all)*c_lat[4]-c_lat[1]^2)
 """
 
 

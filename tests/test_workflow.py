@@ -1,0 +1,115 @@
+"""Python workflow: conversion, deck writing, running, measuring, summary.json."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from bonded_lattice.cli import main
+from bonded_lattice.conversion import BondParameters, bond_to_rock, rock_to_bond
+from bonded_lattice.decks import DeckSpec, deck_text
+from bonded_lattice.experiment import run_test
+from bonded_lattice.rocks import get_rock
+
+# REFERENCE.md worked values (quartz, d = 1 mm); the 2017 paper misprints Ks
+WORKED = {
+    2: (6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915),
+    3: (4.6794e7, 8.0679e6, 1.7037e-7, 18.452, 0.39645),
+}
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_quartz_worked_values(dim):
+    b = rock_to_bond(90e9, 0.16, 25e6, 252e6, 1.0, 1e-3, dim)
+    # the sheet prints 5 significant digits
+    np.testing.assert_allclose([b.Kn, b.Ks, b.Xb, b.Fs0, b.mu_p], WORKED[dim], rtol=1e-4)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_round_trips(dim):
+    rng = np.random.default_rng(7)
+    nu_max, mu_min = (0.25, 1 / math.sqrt(3)) if dim == 2 else (0.2, 1 / (2 * math.sqrt(2)))
+    for _ in range(300):
+        E, Tu, Cu = rng.uniform(1e9, 1e11), rng.uniform(1e6, 5e7), rng.uniform(2e7, 5e8)
+        nu, mu_i, d = rng.uniform(0, nu_max), rng.uniform(mu_min, 2.0), rng.uniform(1e-4, 1e-2)
+        b = rock_to_bond(E, nu, Tu, Cu, mu_i, d, dim)
+        r = bond_to_rock(b.Kn, b.Ks, b.Xb, b.Fs0, b.mu_p, d, dim)
+        # closed-form inverse: only round-off separates the two directions
+        np.testing.assert_allclose([r.E, r.Tu, r.Cu, r.mu_i], [E, Tu, Cu, mu_i], rtol=1e-9)
+        assert r.nu == pytest.approx(nu, abs=1e-12)
+
+
+@pytest.mark.parametrize("args,fragment", [
+    ((90e9, 0.3, 25e6, 252e6, 1.0, 1e-3, 2), "nu = 0.3 is out of range for a 2D lattice"),
+    ((90e9, 0.22, 25e6, 252e6, 1.0, 1e-3, 3), "nu = 0.22 is out of range for a 3D lattice"),
+    ((90e9, 0.16, 25e6, 252e6, 0.5, 1e-3, 2), "mu_i = 0.5 is out of range for a 2D lattice"),
+    ((-1.0, 0.16, 25e6, 252e6, 1.0, 1e-3, 2), "E = -1.0 is out of range"),
+    ((90e9, 0.16, 0.0, 252e6, 1.0, 1e-3, 2), "Tu = 0.0 is out of range"),
+    ((90e9, 0.16, 25e6, -5.0, 1.0, 1e-3, 3), "Cu = -5.0 is out of range"),
+    ((90e9, 0.16, 25e6, 252e6, 1.0, 0.0, 2), "d = 0.0 is out of range"),
+    ((90e9, 0.16, 25e6, 252e6, 1.0, 1e-3, 4), "dim = 4 is out of range"),
+])
+def test_invalid_rock_properties_raise(args, fragment):
+    with pytest.raises(ValueError, match=fragment.replace("(", r"\(")):
+        rock_to_bond(*args)
+
+
+@pytest.mark.parametrize("args,fragment", [
+    ((-1.0, 1.0, 1e-7, 1.0, 0.1, 1e-3, 2), "Kn = -1.0 is out of range"),
+    ((1.0, 2.0, 1e-7, 1.0, 0.1, 1e-3, 2), "Ks = 2.0 is out of range"),
+    ((1.0, 0.5, 0.0, 1.0, 0.1, 1e-3, 3), "Xb = 0.0 is out of range"),
+    ((1.0, 0.5, 1e-7, 1.0, 0.6, 1e-3, 2), "mu_p = 0.6 is out of range for a 2D lattice"),
+    ((1.0, 0.5, 1e-7, 1.0, -0.1, 1e-3, 3), "mu_p = -0.1 is out of range"),
+])
+def test_invalid_bond_parameters_raise(args, fragment):
+    with pytest.raises(ValueError, match=fragment):
+        bond_to_rock(*args)
+
+
+def test_deck_spec_rejects_bad_values():
+    bond = BondParameters(*WORKED[2])
+    good = dict(test="tension", dim=2, d=1e-3, bond=bond, data_file="x", area=0.03, eta=1.0,
+                speed=0.01, steps=10)
+    DeckSpec(**good)
+    for key, value, fragment in [("test", "shear", "test = 'shear' is not known"),
+                                 ("speed", 0.0, "speed = 0.0 is out of range"),
+                                 ("steps", 0, "steps = 0 is out of range"),
+                                 ("eta", -1.0, "eta = -1.0 is out of range")]:
+        with pytest.raises(ValueError, match=fragment):
+            DeckSpec(**{**good, key: value})
+    text = deck_text(DeckSpec(**{**good, "test": "elastic"}))
+    # the elastic test makes the bonds unbreakable (Liu et al. 2017): Xb, Fs0 x 100
+    assert f"{100 * bond.Xb:.17g}" in text and "lattice/viscous" in text
+
+
+def test_cli_convert_prints_pair_coeff(capsys):
+    assert main(["convert", "--rock", "quartz", "--dim", "3"]) == 0
+    out = capsys.readouterr().out
+    assert "pair_coeff" in out and "46793831" in out
+    assert main(["convert", "--dim", "2", "--bond", "6.5874e10", "2.3715e10", "1.9011e-7",
+                 "3.6905e4", "0.23915"]) == 0
+    out = capsys.readouterr().out
+    # the worked values carry 5 digits, so E comes back as 9.0000e10 to that precision
+    E = float(out.split("E = ")[1].split()[0])
+    assert E == pytest.approx(90e9, rel=1e-4)
+
+
+def test_cli_reports_bad_rock(capsys):
+    assert main(["convert", "--rock", "unobtainium"]) == 2
+    assert "unknown rock 'unobtainium'" in capsys.readouterr().err
+
+
+@pytest.mark.mpi
+def test_end_to_end_elastic_run_writes_summary(tmp_path):
+    summary = run_test(get_rock("quartz"), 2, "elastic", 30, tmp_path, np_=2, progress=False)
+    saved = json.loads((tmp_path / "summary.json").read_text())
+    assert saved["measured"] == summary["measured"]
+    assert set(saved["target"]) == {"E", "nu"}
+    assert (tmp_path / "stress_strain.png").stat().st_size > 10_000
+    # finite 2D blocks are softer than the infinite lattice by about 100/N %
+    # (measured: -12.7, -6.7, -3.3, -1.65 % for N = 8, 15, 30, 60; docs/validation.md)
+    assert summary["relative_error"]["E"] == pytest.approx(-0.033, abs=0.005)
+    assert summary["relative_error"]["nu"] == pytest.approx(-0.018, abs=0.005)
