@@ -15,17 +15,14 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
-#include "memory.h"
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
-static constexpr int NPERATOM = 3;
-
 /* ---------------------------------------------------------------------- */
 
 FixLatticeViscous::FixLatticeViscous(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), fdamp(nullptr), fdamp_valid(0)
+    FixLatticeAtomHistory(lmp, narg, arg), fdamp_valid(0)
 {
   if (narg != 4)
     error->all(FLERR, "Illegal fix lattice/viscous command: expected fix ID group lattice/viscous eta");
@@ -35,23 +32,7 @@ FixLatticeViscous::FixLatticeViscous(LAMMPS *lmp, int narg, char **arg) :
                eta);
   dynamic_group_allow = 1;
   restart_global = 1;
-  restart_peratom = 1;
-  create_attribute = 1;
-  maxexchange = NPERATOM;
-
-  grow_arrays(atom->nmax);
-  atom->add_callback(Atom::GROW);
-  atom->add_callback(Atom::RESTART);
-  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
-}
-
-/* ---------------------------------------------------------------------- */
-
-FixLatticeViscous::~FixLatticeViscous()
-{
-  atom->delete_callback(id, Atom::GROW);
-  atom->delete_callback(id, Atom::RESTART);
-  memory->destroy(fdamp);
+  create_history(3);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -73,9 +54,9 @@ void FixLatticeViscous::setup(int vflag)
   const int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++)
     if (mask[i] & groupbit) {
-      f[i][0] += fdamp[i][0];
-      f[i][1] += fdamp[i][1];
-      f[i][2] += fdamp[i][2];
+      f[i][0] += hist[i][0];
+      f[i][1] += hist[i][1];
+      f[i][2] += hist[i][2];
     }
 }
 
@@ -89,28 +70,14 @@ void FixLatticeViscous::post_force(int /*vflag*/)
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
     if (mask[i] & groupbit) {
-      fdamp[i][0] = -eta * v[i][0];
-      fdamp[i][1] = -eta * v[i][1];
-      fdamp[i][2] = -eta * v[i][2];
-      f[i][0] += fdamp[i][0];
-      f[i][1] += fdamp[i][1];
-      f[i][2] += fdamp[i][2];
+      hist[i][0] = -eta * v[i][0];
+      hist[i][1] = -eta * v[i][1];
+      hist[i][2] = -eta * v[i][2];
+      f[i][0] += hist[i][0];
+      f[i][1] += hist[i][1];
+      f[i][2] += hist[i][2];
     }
   fdamp_valid = 1;
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixLatticeViscous::grow_arrays(int nmax)
-{
-  memory->grow(fdamp, nmax, 3, "lattice/viscous:fdamp");
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixLatticeViscous::copy_arrays(int i, int j, int /*delflag*/)
-{
-  for (int k = 0; k < 3; k++) fdamp[j][k] = fdamp[i][k];
 }
 
 /* ----------------------------------------------------------------------
@@ -119,55 +86,7 @@ void FixLatticeViscous::copy_arrays(int i, int j, int /*delflag*/)
 
 void FixLatticeViscous::set_arrays(int i)
 {
-  for (int k = 0; k < 3; k++) fdamp[i][k] = -eta * atom->v[i][k];
-}
-
-/* ---------------------------------------------------------------------- */
-
-int FixLatticeViscous::pack_exchange(int i, double *buf)
-{
-  for (int k = 0; k < 3; k++) buf[k] = fdamp[i][k];
-  return NPERATOM;
-}
-
-/* ---------------------------------------------------------------------- */
-
-int FixLatticeViscous::unpack_exchange(int nlocal, double *buf)
-{
-  for (int k = 0; k < 3; k++) fdamp[nlocal][k] = buf[k];
-  return NPERATOM;
-}
-
-/* ---------------------------------------------------------------------- */
-
-int FixLatticeViscous::pack_restart(int i, double *buf)
-{
-  buf[0] = NPERATOM + 1;
-  return 1 + pack_exchange(i, buf + 1);
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixLatticeViscous::unpack_restart(int nlocal, int nth)
-{
-  double **extra = atom->extra;
-  int m = 0;
-  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
-}
-
-/* ---------------------------------------------------------------------- */
-
-int FixLatticeViscous::size_restart(int /*i*/)
-{
-  return NPERATOM + 1;
-}
-
-/* ---------------------------------------------------------------------- */
-
-int FixLatticeViscous::maxsize_restart()
-{
-  return NPERATOM + 1;
+  for (int k = 0; k < 3; k++) hist[i][k] = -eta * atom->v[i][k];
 }
 
 /* ---------------------------------------------------------------------- */
@@ -190,11 +109,4 @@ void FixLatticeViscous::restart(char *buf)
 {
   auto list = (double *) buf;
   fdamp_valid = (static_cast<int>(list[0]) == 1 && list[1] == eta) ? 1 : 0;
-}
-
-/* ---------------------------------------------------------------------- */
-
-double FixLatticeViscous::memory_usage()
-{
-  return (double) atom->nmax * NPERATOM * sizeof(double);
 }

@@ -14,7 +14,6 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
-#include "memory.h"
 #include "update.h"
 
 #include <cmath>
@@ -23,12 +22,10 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
-static constexpr int NPERATOM = 6;    // shear[3] + xprev[3]
-
 /* ---------------------------------------------------------------------- */
 
 FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), vel(0.0), shear(nullptr), xprev(nullptr), history_ready(0),
+    FixLatticeAtomHistory(lmp, narg, arg), vel(0.0), history_ready(0),
     wall_energy(0.0), force_flag(0)
 {
   if (narg < 8)
@@ -78,15 +75,8 @@ FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
   extlist = new int[5]{1, 1, 1, 0, 1};
   energy_global_flag = 1;
   restart_global = 1;
-  restart_peratom = 1;
-  create_attribute = 1;
-  maxexchange = NPERATOM;
   dynamic_group_allow = 1;
-
-  grow_arrays(atom->nmax);
-  atom->add_callback(Atom::GROW);
-  atom->add_callback(Atom::RESTART);
-  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+  create_history(6);
   std::memset(wall_force, 0, sizeof(wall_force));
 }
 
@@ -94,10 +84,6 @@ FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
 
 FixLatticeWall::~FixLatticeWall()
 {
-  atom->delete_callback(id, Atom::GROW);
-  atom->delete_callback(id, Atom::RESTART);
-  memory->destroy(shear);
-  memory->destroy(xprev);
   delete[] extlist;
 }
 
@@ -166,16 +152,17 @@ void FixLatticeWall::post_force(int /*vflag*/)
     if (!(mask[i] & groupbit)) continue;
 
     // tangential displacement since the last step (periodic jumps removed)
-    double inc[3] = {x[i][0] - xprev[i][0], x[i][1] - xprev[i][1], x[i][2] - xprev[i][2]};
+    double *s = hist[i];        // shear spring
+    double *xprev = hist[i] + 3;  // position at the last step
+    double inc[3] = {x[i][0] - xprev[0], x[i][1] - xprev[1], x[i][2] - xprev[2]};
     domain->minimum_image(FLERR, inc);
     inc[dim] = 0.0;
-    xprev[i][0] = x[i][0];
-    xprev[i][1] = x[i][1];
-    xprev[i][2] = x[i][2];
+    xprev[0] = x[i][0];
+    xprev[1] = x[i][1];
+    xprev[2] = x[i][2];
 
     const double h = inward * (x[i][dim] - wall);    // centre's distance inside the wall
     const double delta = radius[i] - h;
-    double *s = shear[i];
     if (delta <= 0.0) {
       s[0] = s[1] = s[2] = 0.0;
       continue;
@@ -232,85 +219,12 @@ double FixLatticeWall::compute_vector(int n)
 
 /* ---------------------------------------------------------------------- */
 
-void FixLatticeWall::grow_arrays(int nmax)
-{
-  memory->grow(shear, nmax, 3, "lattice/wall:shear");
-  memory->grow(xprev, nmax, 3, "lattice/wall:xprev");
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixLatticeWall::copy_arrays(int i, int j, int /*delflag*/)
-{
-  for (int k = 0; k < 3; k++) {
-    shear[j][k] = shear[i][k];
-    xprev[j][k] = xprev[i][k];
-  }
-}
-
-/* ---------------------------------------------------------------------- */
-
 void FixLatticeWall::set_arrays(int i)
 {
   for (int k = 0; k < 3; k++) {
-    shear[i][k] = 0.0;
-    xprev[i][k] = atom->x[i][k];
+    hist[i][k] = 0.0;                 // shear spring
+    hist[i][3 + k] = atom->x[i][k];   // position
   }
-}
-
-/* ---------------------------------------------------------------------- */
-
-int FixLatticeWall::pack_exchange(int i, double *buf)
-{
-  for (int k = 0; k < 3; k++) {
-    buf[k] = shear[i][k];
-    buf[3 + k] = xprev[i][k];
-  }
-  return NPERATOM;
-}
-
-/* ---------------------------------------------------------------------- */
-
-int FixLatticeWall::unpack_exchange(int nlocal, double *buf)
-{
-  for (int k = 0; k < 3; k++) {
-    shear[nlocal][k] = buf[k];
-    xprev[nlocal][k] = buf[3 + k];
-  }
-  return NPERATOM;
-}
-
-/* ---------------------------------------------------------------------- */
-
-int FixLatticeWall::pack_restart(int i, double *buf)
-{
-  buf[0] = NPERATOM + 1;
-  pack_exchange(i, buf + 1);
-  return NPERATOM + 1;
-}
-
-/* ---------------------------------------------------------------------- */
-
-void FixLatticeWall::unpack_restart(int nlocal, int nth)
-{
-  double **extra = atom->extra;
-  int m = 0;
-  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  unpack_exchange(nlocal, &extra[nlocal][m + 1]);
-}
-
-/* ---------------------------------------------------------------------- */
-
-int FixLatticeWall::size_restart(int /*i*/)
-{
-  return NPERATOM + 1;
-}
-
-/* ---------------------------------------------------------------------- */
-
-int FixLatticeWall::maxsize_restart()
-{
-  return NPERATOM + 1;
 }
 
 /* ----------------------------------------------------------------------
@@ -338,9 +252,3 @@ void FixLatticeWall::restart(char *buf)
   history_ready = 1;
 }
 
-/* ---------------------------------------------------------------------- */
-
-double FixLatticeWall::memory_usage()
-{
-  return (double) atom->nmax * NPERATOM * sizeof(double);
-}

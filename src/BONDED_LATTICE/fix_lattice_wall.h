@@ -13,11 +13,11 @@ FixStyle(lattice/wall,FixLatticeWall);
 #ifndef LMP_FIX_LATTICE_WALL_H
 #define LMP_FIX_LATTICE_WALL_H
 
-#include "fix.h"
+#include "fix_lattice_atom_history.h"
 
 namespace LAMMPS_NS {
 
-class FixLatticeWall : public Fix {
+class FixLatticeWall : public FixLatticeAtomHistory {
  public:
   FixLatticeWall(class LAMMPS *, int, char **);
   ~FixLatticeWall() override;
@@ -29,18 +29,9 @@ class FixLatticeWall : public Fix {
   double compute_scalar() override;
   double compute_vector(int) override;
 
-  void grow_arrays(int) override;
-  void copy_arrays(int, int, int) override;
   void set_arrays(int) override;
-  int pack_exchange(int, double *) override;
-  int unpack_exchange(int, double *) override;
-  int pack_restart(int, double *) override;
-  void unpack_restart(int, int) override;
-  int size_restart(int) override;
-  int maxsize_restart() override;
   void write_restart(FILE *) override;
   void restart(char *) override;
-  double memory_usage() override;
 
   double position() const;    // wall coordinate at the current step
 
@@ -52,8 +43,8 @@ class FixLatticeWall : public Fix {
   double vel;       // speed along +axis
   double kn, ks, mu;
 
-  double **shear;    // per-atom shear-spring displacement against the wall
-  double **xprev;    // per-atom position at the last force evaluation
+  // hist[i][0..2]: shear-spring displacement against the wall,
+  // hist[i][3..5]: position at the last force evaluation
   int history_ready;
 
   double wall_force[4];    // force the particles exert on the wall (x, y, z), contacts
