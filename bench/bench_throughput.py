@@ -50,6 +50,31 @@ timestep        1.0e-8
 thermo          1000
 """
 
+def bpm_model(atom_style: str, mass_lines: str, bond_lines: str) -> dict[str, str]:
+    """A BPM bond model on the same lattice: bonds between touching particles."""
+    return dict(
+        box_args="1 box bond/types 1 extra/bond/per/atom 14 extra/special/per/atom 30",
+        setup=f"""
+atom_style      {atom_style}
+special_bonds   lj 0.0 1.0 1.0 coul 0.0 1.0 1.0
+newton          on off
+comm_modify     vel yes
+""",
+        after=f"""
+{mass_lines}
+pair_style      bpm/spring
+pair_coeff      1 1 {KN} {D} 0.0
+# bonds are created under zero 1-2 weights, then BPM's own weights apply
+bond_style      zero
+bond_coeff      1
+create_bonds    many all all 1 0.0 {1.01 * D}
+special_bonds   lj 0.0 1.0 1.0 coul 1.0 1.0 1.0
+bond_style      {bond_lines}
+""",
+        damping="viscous 0.05",
+    )
+
+
 MODELS = {
     "lattice/bond": dict(
         box_args="1 box",
@@ -66,52 +91,13 @@ pair_coeff      1 1 {KN} {KS} {XB} {FS0} {MUP}
         damping="lattice/viscous 0.05",
     ),
     # normal springs only (no shear); pair bpm/spring repels unbonded pairs
-    "bpm/spring": dict(
-        box_args="1 box bond/types 1 extra/bond/per/atom 14 extra/special/per/atom 30",
-        setup="""
-atom_style      bond
-special_bonds   lj 0.0 1.0 1.0 coul 0.0 1.0 1.0
-newton          on off
-comm_modify     vel yes
-""",
-        after=f"""
-mass            1 {MASS}
-pair_style      bpm/spring
-pair_coeff      1 1 {KN} {D} 0.0
-# bonds are created under zero 1-2 weights, then BPM's own weights apply
-bond_style      zero
-bond_coeff      1
-create_bonds    many all all 1 0.0 {1.01 * D}
-special_bonds   lj 0.0 1.0 1.0 coul 1.0 1.0 1.0
-bond_style      bpm/spring
-bond_coeff      1 {KN} {XB / D} 0.0
-""",
-        damping="viscous 0.05",
-    ),
+    "bpm/spring": bpm_model("bond", f"mass            1 {MASS}",
+                            f"bpm/spring\nbond_coeff      1 {KN} {XB / D} 0.0"),
     # the BPM model with shear springs (rotational particles)
-    "bpm/rotational": dict(
-        box_args="1 box bond/types 1 extra/bond/per/atom 14 extra/special/per/atom 30",
-        setup="""
-atom_style      bpm/sphere
-special_bonds   lj 0.0 1.0 1.0 coul 0.0 1.0 1.0
-newton          on off
-comm_modify     vel yes
-""",
-        after=f"""
-set             type 1 diameter {D}
-set             type 1 mass {MASS}
-pair_style      bpm/spring
-pair_coeff      1 1 {KN} {D} 0.0
-# bonds are created under zero 1-2 weights, then BPM's own weights apply
-bond_style      zero
-bond_coeff      1
-create_bonds    many all all 1 0.0 {1.01 * D}
-special_bonds   lj 0.0 1.0 1.0 coul 1.0 1.0 1.0
-bond_style      bpm/rotational
-bond_coeff      1 {KN} {KS} 0.0 0.0 {FS0 * 10} {FS0 * 10} 1.0e-3 1.0e-3 0.0 0.0 0.0 0.0
-""",
-        damping="viscous 0.05",
-    ),
+    "bpm/rotational": bpm_model(
+        "bpm/sphere", f"set             type 1 diameter {D}\nset             type 1 mass {MASS}",
+        f"bpm/rotational\nbond_coeff      1 {KN} {KS} 0.0 0.0 {FS0 * 10} {FS0 * 10} "
+        "1.0e-3 1.0e-3 0.0 0.0 0.0 0.0"),
 }
 
 

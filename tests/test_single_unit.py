@@ -72,9 +72,12 @@ Tolerances
 from __future__ import annotations
 
 import math
+from dataclasses import asdict
 
 import numpy as np
 import pytest
+
+from bonded_lattice.conversion import lattice_mass, rock_to_bond
 
 S2 = math.sqrt(2.0)
 S3 = math.sqrt(3.0)
@@ -97,31 +100,15 @@ WORKED = {
 # rock properties <-> bond parameters (REFERENCE.md; Liu 2013 App. B/C, Liu 2017 App. B, eqs. 4-15)
 # ----------------------------------------------------------------------------------------------
 
-def intrinsic_factor(mu_i: float) -> float:
-    return (math.sqrt(1.0 + mu_i * mu_i) + mu_i) ** 2
-
-
 def bond_params(dim: int, E: float, nu: float, Tu: float, Cu: float, mu_i: float,
                 d: float) -> dict[str, float]:
-    """Kn, Ks, Xb, Fs0, mu_p of the 2D hexagonal or 3D close-packed lattice."""
-    big_i = intrinsic_factor(mu_i)
-    if dim == 2:
-        kn = E / (S3 * (1.0 - 2.0 * nu) * (1.0 + nu))
-        ks = E * (1.0 - 4.0 * nu) / (S3 * (1.0 - 2.0 * nu) * (1.0 + nu))
-        xb = (2.0 * kn + ks) / (2.0 * S3 * kn * (kn + ks)) * Tu * d
-        mu_p = (-3.0 * S3 + S3 * big_i) / (3.0 + 3.0 * big_i)
-        fs0 = (0.25 - S3 / 4.0 * mu_p) * Cu * d
-    else:
-        kn = S2 * E * d / (4.0 * (1.0 - 2.0 * nu))
-        ks = S2 * (1.0 - 5.0 * nu) * E * d / (4.0 * (1.0 + nu) * (1.0 - 2.0 * nu))
-        xb = (3.0 * kn + ks) / (6.0 * S2 * kn * (kn + ks)) * Tu * d * d
-        mu_p = (-2.0 * S2 + S2 * big_i) / (2.0 + 2.0 * big_i)
-        fs0 = (1.0 - S2 * mu_p) / 6.0 * Cu * d * d
-    return {"Kn": kn, "Ks": ks, "Xb": xb, "Fs0": fs0, "mu_p": mu_p}
+    """Kn, Ks, Xb, Fs0, mu_p of the 2D hexagonal or 3D close-packed lattice (package formulas,
+    checked against REFERENCE.md's worked values in test_quartz_worked_values)."""
+    return asdict(rock_to_bond(E, nu, Tu, Cu, mu_i, d, dim))
 
 
 def particle_mass(dim: int, rho: float, d: float) -> float:
-    return rho * S3 * d * d / 2.0 if dim == 2 else rho * S2 * d**3 / 2.0
+    return lattice_mass(rho, d, dim)
 
 
 def unit_theory(dim: int, p: dict[str, float], d: float) -> dict[str, float]:
