@@ -25,12 +25,13 @@ using namespace FixConst;
 /* ---------------------------------------------------------------------- */
 
 FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
-    FixLatticeAtomHistory(lmp, narg, arg), vel(0.0), history_ready(0),
+    FixLatticeAtomHistory(lmp, narg, arg), vel(0.0), servo(0), servo_force(0.0), servo_gain(0.5),
+    history_ready(0),
     wall_energy(0.0), force_flag(0)
 {
   if (narg < 8)
     error->all(FLERR, "Illegal fix lattice/wall command: expected fix ID group lattice/wall "
-               "face position Kn Ks mu [vel v]");
+               "face position Kn Ks mu [vel v | servo P A [gain g]]");
 
   if (!atom->radius_flag)
     error->all(FLERR, "fix lattice/wall requires per-atom radii (atom_style sphere)");
@@ -59,10 +60,33 @@ FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
       if (iarg + 1 >= narg) error->all(FLERR, "fix lattice/wall keyword vel needs a value");
       vel = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       iarg += 2;
+    } else if (key == "servo") {
+      if (iarg + 2 >= narg)
+        error->all(FLERR, "fix lattice/wall keyword servo needs two values: stress P and area A");
+      const double stress = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      const double area = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      if (!(stress >= 0.0))
+        error->all(FLERR, "fix lattice/wall servo stress {} is out of range: need P >= 0 "
+                   "(compression positive)", stress);
+      if (!(area > 0.0))
+        error->all(FLERR, "fix lattice/wall servo area {} is out of range: need A > 0", area);
+      servo = 1;
+      servo_force = stress * area;
+      iarg += 3;
+    } else if (key == "gain") {
+      if (iarg + 1 >= narg) error->all(FLERR, "fix lattice/wall keyword gain needs a value");
+      servo_gain = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(servo_gain > 0.0 && servo_gain <= 1.0))
+        error->all(FLERR, "fix lattice/wall gain {} is out of range: need 0 < gain <= 1",
+                   servo_gain);
+      iarg += 2;
     } else {
-      error->all(FLERR, "Unknown fix lattice/wall keyword {}: the only keyword is vel", key);
+      error->all(FLERR, "Unknown fix lattice/wall keyword {}: valid are vel, servo, gain", key);
     }
   }
+  if (servo && vel != 0.0)
+    error->all(FLERR, "fix lattice/wall: vel and servo exclude each other (a servo wall sets "
+               "its own speed)");
 
   t0 = current_time();
 
@@ -110,13 +134,15 @@ double FixLatticeWall::position() const
 
 /* ---------------------------------------------------------------------- */
 
-void FixLatticeWall::setup(int vflag)
+void FixLatticeWall::setup(int /*vflag*/)
 {
   if (!history_ready) {
     for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
     history_ready = 1;
   }
-  post_force(vflag);
+  // the forces of the step already taken: a servo wall does not move here,
+  // so a run split in pieces follows the uninterrupted one
+  apply_forces(false);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -136,6 +162,17 @@ void FixLatticeWall::min_post_force(int vflag)
 /* ---------------------------------------------------------------------- */
 
 void FixLatticeWall::post_force(int /*vflag*/)
+{
+  apply_forces(true);
+}
+
+/* ----------------------------------------------------------------------
+   wall forces at the current wall position; a servo wall then moves for
+   the next step by gain * (force error) / (Kn * contacts), the usual DEM
+   servo (a full correction of a stiffness Kn per touching particle)
+------------------------------------------------------------------------- */
+
+void FixLatticeWall::apply_forces(bool servo_step)
 {
   double **x = atom->x;
   double **f = atom->f;
@@ -190,6 +227,13 @@ void FixLatticeWall::post_force(int /*vflag*/)
     }
     wall_force[3] += 1.0;
     wall_energy += 0.5 * kn * delta * delta + es;
+  }
+
+  if (servo && servo_step) {
+    compute_scalar();    // global force and contacts of this step
+    const double pushed = -inward * total[dim];    // compression positive
+    const double contacts = MAX(1.0, total[3]);
+    pos0 -= inward * servo_gain * (pushed - servo_force) / (kn * contacts);
   }
 }
 

@@ -42,6 +42,9 @@ class FixLatticeWall : public FixLatticeAtomHistory {
   double t0;        // simulation time at which the wall was at pos0
   double vel;       // speed along +axis
   double kn, ks, mu;
+  int servo;              // 1: the wall moves to hold a normal stress
+  double servo_force;     // target normal force (stress x area), compression positive
+  double servo_gain;      // fraction of the force error corrected per step
 
   // hist[i][0..2]: shear-spring displacement against the wall,
   // hist[i][3..5]: position at the last force evaluation
@@ -53,6 +56,7 @@ class FixLatticeWall : public FixLatticeAtomHistory {
   double total[5];
 
   double current_time() const;
+  void apply_forces(bool servo_step);
 };
 
 }    // namespace LAMMPS_NS
