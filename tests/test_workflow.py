@@ -113,3 +113,30 @@ def test_end_to_end_elastic_run_writes_summary(tmp_path):
     # (measured: -12.7, -6.7, -3.3, -1.65 % for N = 8, 15, 30, 60; docs/validation.md)
     assert summary["relative_error"]["E"] == pytest.approx(-0.033, abs=0.005)
     assert summary["relative_error"]["nu"] == pytest.approx(-0.018, abs=0.005)
+
+
+def test_coulomb_envelope_recovers_known_friction():
+    from bonded_lattice.analysis import coulomb_envelope
+
+    mu_i, cu = 0.8, 150e6
+    q = (math.sqrt(1 + mu_i**2) + mu_i) ** 2
+    s3 = np.array([0.0, 5e6, 10e6, 30e6])
+    got_cu, got_mu = coulomb_envelope(s3, cu + q * s3)
+    assert got_cu == pytest.approx(cu, rel=1e-12) and got_mu == pytest.approx(mu_i, rel=1e-12)
+    with pytest.raises(ValueError, match="at least two different confining stresses"):
+        coulomb_envelope([1e6, 1e6], [1e8, 2e8])
+
+
+@pytest.mark.mpi
+def test_confined_tests_give_internal_friction(tmp_path):
+    from bonded_lattice.analysis import coulomb_envelope
+
+    rock = get_rock("quartz")
+    peaks = [run_test(rock, 2, "confined", 15, tmp_path / f"p{p:g}", np_=2, progress=False,
+                      confining=p)["measured"]["sigma1"] for p in (0.0, 10e6, 20e6)]
+    cu, mu_i = coulomb_envelope([0.0, 10e6, 20e6], peaks)
+    # the envelope slope of the lattice follows the conversion's mu_i: measured
+    # +2.4% at N = 15 (docs/validation.md); the strength itself carries the
+    # multi-unit deficit (about -20%, as in the papers)
+    assert mu_i == pytest.approx(rock.mu_i, rel=0.05)
+    assert 0.7 * rock.Cu < cu < rock.Cu

@@ -22,7 +22,7 @@ class Measured:
 
     E: float
     nu: float
-    strength: float | None      # Tu for tension, Cu for compression, None for elastic
+    strength: float | None      # Tu (tension), Cu (compression), peak axial stress (confined)
     strain_at_peak: float | None
     broken_tension: int
     broken_shear: int
@@ -87,15 +87,35 @@ def measure(thermo: Thermo, test: str, dim: int) -> Measured:
     """
     strain, lateral, stress = thermo["v_strain"], thermo["v_lateral"], thermo["v_stress"]
     window = ELASTIC_WINDOW if test == "elastic" else STRENGTH_WINDOW
+    if test == "confined":
+        # the confinement preloads the block: fit on the axial stress change
+        stress = stress - stress[0]
     E = youngs_modulus(strain, stress, window)
     nu = poisson_ratio(strain, lateral, stress, window)
+    # in a confined test the side walls restrain the lateral strain: nu and E
+    # from it are not the material's; report them as measured
     if dim == 2:
         E, nu = plane_strain_from_in_plane(E, nu)
     strength = strain_at_peak = None
-    if test in ("tension", "compression"):
-        signed = stress if test == "tension" else -stress
+    if test in ("tension", "compression", "confined"):
+        signed = thermo["v_stress"] if test == "tension" else -thermo["v_stress"]
         ipeak = int(np.argmax(signed))
         strength, strain_at_peak = float(signed[ipeak]), float(strain[ipeak])
     return Measured(E=E, nu=nu, strength=strength, strain_at_peak=strain_at_peak,
                     broken_tension=int(thermo["c_bonds[2]"][-1]),
                     broken_shear=int(thermo["c_bonds[3]"][-1]))
+
+
+def coulomb_envelope(sigma3: np.ndarray, sigma1: np.ndarray) -> tuple[float, float]:
+    """Cu and mu_i from peak axial stresses of confined tests.
+
+    Fits the Coulomb envelope sigma1 = Cu + q sigma3 (compression positive);
+    q = (sqrt(1 + mu_i^2) + mu_i)^2 gives mu_i = (q - 1) / (2 sqrt(q)).
+    """
+    sigma3, sigma1 = np.asarray(sigma3, float), np.asarray(sigma1, float)
+    if len(sigma3) < 2 or np.ptp(sigma3) <= 0:
+        raise ValueError("the envelope needs at least two different confining stresses")
+    q, cu = np.polyfit(sigma3, sigma1, 1)
+    if q <= 1:
+        raise ValueError(f"envelope slope q = {q:.4g} <= 1: no internal friction can be fitted")
+    return float(cu), float((q - 1) / (2 * np.sqrt(q)))

@@ -50,11 +50,11 @@ def cmd_generate(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
     bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, args.d, args.dim)
     lattice = build_lattice(args.dim, args.n, args.d)
-    plan = plan_test(rock, bond, lattice, args.test, args.crossings, args.speed)
+    plan = plan_test(rock, bond, lattice, args.test, args.crossings, args.speed, args.confining)
     write_data(lattice, out / "data.lattice", plan.mass)
     spec = DeckSpec(test=args.test, dim=args.dim, d=args.d, bond=bond, data_file="data.lattice",
                     area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps, dt=plan.dt,
-                    thermo_every=max(1, plan.steps // 400))
+                    thermo_every=max(1, plan.steps // 400), confining=args.confining)
     write_deck(spec, out / f"in.{args.test}")
     print(f"wrote {out / 'data.lattice'} ({lattice.n} particles) and {out / ('in.' + args.test)}")
     print(f"run it with: cd {out} && mpirun -np 2 lmp -in in.{args.test}")
@@ -66,10 +66,29 @@ def cmd_run(args: argparse.Namespace) -> int:
 
     summary = run_test(_rock(args), args.dim, args.test, args.n, args.out, np_=args.np,
                        d=args.d, crossings=args.crossings, speed=args.speed,
-                       progress=not args.quiet)
+                       progress=not args.quiet, confining=args.confining)
     print(summary_table(summary))
     print(f"results in {args.out}: summary.json, stress_strain.png"
           + (", broken_bonds.png" if args.test != "elastic" else ""))
+    return 0
+
+
+def cmd_envelope(args: argparse.Namespace) -> int:
+    from .analysis import coulomb_envelope
+    from .experiment import run_test
+
+    rock = _rock(args)
+    peaks = []
+    for p in args.pressures:
+        summary = run_test(rock, args.dim, "confined", args.n, Path(args.out) / f"confined_{p:g}",
+                           np_=args.np, d=args.d, crossings=args.crossings, speed=args.speed,
+                           progress=not args.quiet, confining=p)
+        peaks.append(summary["measured"]["sigma1"])
+        print(f"sigma3 = {p / 1e6:8.3f} MPa   sigma1 = {peaks[-1] / 1e6:9.3f} MPa "
+              f"(Coulomb target {summary['target']['sigma1'] / 1e6:9.3f} MPa)")
+    cu, mu_i = coulomb_envelope(args.pressures, peaks)
+    print(f"envelope: Cu = {cu / 1e6:.4g} MPa (target {rock.Cu / 1e6:.4g}), "
+          f"mu_i = {mu_i:.4g} (target {rock.mu_i:.4g})")
     return 0
 
 
@@ -86,7 +105,10 @@ def _common(p: argparse.ArgumentParser, test: bool = True) -> None:
     p.add_argument("--dim", type=int, choices=(2, 3), default=2)
     p.add_argument("--d", type=float, default=1.0e-3, help="particle diameter in m (default 1e-3)")
     if test:
-        p.add_argument("--test", choices=("tension", "compression", "elastic"), default="compression")
+        p.add_argument("--test", choices=("tension", "compression", "elastic", "confined"),
+                       default="compression")
+        p.add_argument("--confining", type=float, default=0.0,
+                       help="confining stress of --test confined, Pa (compression positive)")
         p.add_argument("--n", type=int, default=30,
                        help="particles across (2D) or elements along y (3D); default 30")
         p.add_argument("--crossings", type=float, default=100.0,
@@ -116,6 +138,14 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_run)
+
+    p = sub.add_parser("envelope", help="confined tests at several pressures: Cu and mu_i")
+    _common(p)
+    p.add_argument("--pressures", type=float, nargs="+", default=[0.0, 10e6, 20e6],
+                   help="confining stresses in Pa (default 0 10e6 20e6)")
+    p.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_envelope)
 
     p = sub.add_parser("info", help="package version and plugin location")
     p.set_defaults(func=cmd_info)

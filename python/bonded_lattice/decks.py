@@ -9,7 +9,10 @@ and loads the block along its loading axis (y in 2D, z in 3D):
 - ``compression``: two smooth platens (``fix lattice/wall``, ``mu 0``) move
   toward each other at ``speed``;
 - ``elastic``: compression to a small strain with breaking switched off
-  (``Xb`` and ``Fs0`` multiplied by 100, as in Liu et al. 2017), for E and nu.
+  (``Xb`` and ``Fs0`` multiplied by 100, as in Liu et al. 2017), for E and nu;
+- ``confined``: compression between the platens while smooth side walls
+  (``fix lattice/wall ... servo``) hold the confining stress ``confining``
+  (biaxial in 2D, triaxial in 3D).
 
 Every deck prints the same thermo columns, which :mod:`bonded_lattice.analysis`
 reads: ``Step Time v_strain v_lateral v_stress c_bonds[1..4] KinEng``
@@ -25,7 +28,7 @@ from typing import TextIO
 
 from .conversion import BondParameters
 
-TESTS = ("tension", "compression", "elastic")
+TESTS = ("tension", "compression", "elastic", "confined")
 
 
 @dataclass(frozen=True)
@@ -45,6 +48,7 @@ class DeckSpec:
     thermo_every: int = 500
     dump_every: int = 0       # >0: dump particles with their intact-bond count
     wall_kn: float | None = None  # platen stiffness, default 2*Kn
+    confining: float = 0.0    # confining stress of the confined test (Pa, compression positive)
 
     def __post_init__(self) -> None:
         if self.test not in TESTS:
@@ -57,6 +61,9 @@ class DeckSpec:
                 raise ValueError(f"{name} = {value} is out of range: need {name} > 0")
         if self.eta < 0:
             raise ValueError(f"eta = {self.eta} is out of range: need eta >= 0")
+        if self.confining < 0:
+            raise ValueError(f"confining = {self.confining} is out of range: need confining >= 0 "
+                             "(compression positive)")
         if self.steps < 1:
             raise ValueError(f"steps = {self.steps} is out of range: need steps >= 1")
 
@@ -79,6 +86,7 @@ def _header(spec: DeckSpec) -> str:
         "tension": "Uniaxial tension between two smooth planes holding the end layers",
         "compression": "Uniaxial compression between two smooth platens (fix lattice/wall, mu 0)",
         "elastic": "Elastic test: small compression with unbreakable bonds (Xb, Fs0 x 100)",
+        "confined": f"Confined compression: platens plus side walls holding {spec.confining:g} Pa",
     }[spec.test]
     b = deck_bond(spec)
     boundary = "f f p" if spec.dim == 2 else "f f f"
@@ -157,7 +165,21 @@ variable        stress equal 0.5*(f_fbot[{k}]-f_ftop[{k}])/{spec.area:.8g}
 """
     wall_kn = spec.wall_kn if spec.wall_kn is not None else 2.0 * spec.bond.Kn
     r = 0.5 * d
-    return f"""
+    sides = ""
+    if spec.test == "confined":
+        # side faces: x in 2D (area = height x unit thickness), x and y in 3D
+        lateral = "x" if spec.dim == 2 else "xy"
+        depth = "1.0" if spec.dim == 2 else f"(bound(all,ymax)-bound(all,ymin)+{d!r})"
+        sides = "# ---- confinement: smooth side walls holding the confining stress (servo) ----\n"
+        for a in lateral:
+            other = "y" if a == "x" else "x"
+            area = (f"$((v_hi0-v_lo0+{d!r})*(bound(all,{other}max)-bound(all,{other}min)+{d!r}))"
+                    if spec.dim == 3 else f"$((v_hi0-v_lo0+{d!r})*{depth})")
+            sides += (f"fix             side{a}lo all lattice/wall {a}lo $(bound(all,{a}min)-{r!r}) "
+                      f"{wall_kn:.6g} 0 0 servo {spec.confining:.6g} {area}\n"
+                      f"fix             side{a}hi all lattice/wall {a}hi $(bound(all,{a}max)+{r!r}) "
+                      f"{wall_kn:.6g} 0 0 servo {spec.confining:.6g} {area}\n")
+    return sides + f"""
 # ---- loading: smooth platens touching the end layers, moving in at {spec.speed:g} m/s ----
 fix             bottom all lattice/wall {ax}lo $(v_lo0-{r!r}) {wall_kn:.6g} 0 0 vel {spec.speed:.6g}
 fix             top all lattice/wall {ax}hi $(v_hi0+{r!r}) {wall_kn:.6g} 0 0 vel {-spec.speed:.6g}

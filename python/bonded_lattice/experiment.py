@@ -42,8 +42,16 @@ def build_lattice(dim: int, n: int, d: float) -> Lattice:
     return hex_block_2d(n, d) if dim == 2 else close_packed_block_3d(n, d)
 
 
+def confined_strength(rock: Rock, confining: float) -> float:
+    """Axial stress at failure under confinement: sigma1 = Cu + I sigma3 (Coulomb envelope
+    with I = (sqrt(1 + mu_i^2) + mu_i)^2, the factor of the conversion formulas)."""
+    big_i = (math.sqrt(1.0 + rock.mu_i**2) + rock.mu_i) ** 2
+    return rock.Cu + big_i * confining
+
+
 def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
-              crossings: float = 100.0, speed: float | None = None) -> RunPlan:
+              crossings: float = 100.0, speed: float | None = None,
+              confining: float = 0.0) -> RunPlan:
     """Choose time step, damping, platen speed and run length.
 
     - dt = 0.1 sqrt(m/Kn): a tenth of the bond's vibration time scale (the
@@ -67,7 +75,8 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
     height = lattice.height
     wave_speed = math.sqrt(rock.E / rock.rho)
     target_strain = {"tension": rock.Tu / rock.E, "compression": rock.Cu / rock.E,
-                     "elastic": 1.0e-4}[test]
+                     "elastic": 1.0e-4,
+                     "confined": confined_strength(rock, confining) / rock.E}[test]
     load_time = crossings * height / wave_speed
     if speed is None:
         speed = target_strain * height / (2 * load_time)
@@ -86,17 +95,17 @@ def lattice_n_across(lattice: Lattice) -> int:
 
 def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int = 2,
              d: float = 1.0e-3, crossings: float = 100.0, speed: float | None = None,
-             progress: bool = True) -> dict:
+             progress: bool = True, confining: float = 0.0) -> dict:
     """Run one test end to end and return the summary (also written to summary.json)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, d, dim)
     lattice = build_lattice(dim, n, d)
-    plan = plan_test(rock, bond, lattice, test, crossings, speed)
+    plan = plan_test(rock, bond, lattice, test, crossings, speed, confining)
     write_data(lattice, out / "data.lattice", plan.mass)
     spec = DeckSpec(test=test, dim=dim, d=d, bond=bond, data_file="data.lattice", area=plan.area,
                     eta=plan.eta, speed=plan.speed, steps=plan.steps, dt=plan.dt,
-                    thermo_every=max(1, plan.steps // 400))
+                    thermo_every=max(1, plan.steps // 400), confining=confining)
     deck = out / f"in.{test}"
     write_deck(spec, deck)
     result: RunResult = run_deck(deck, out, np_=np_, total_steps=plan.steps, progress=progress)
@@ -105,12 +114,17 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
     thermo = result.last_thermo()
     got = measure(thermo, test, dim)
 
-    strength_name = {"tension": "Tu", "compression": "Cu"}.get(test)
-    target = {"E": rock.E, "nu": rock.nu}
-    measured = {"E": got.E, "nu": got.nu}
-    if strength_name:
-        target[strength_name] = getattr(rock, strength_name)
-        measured[strength_name] = got.strength
+    strength_name = {"tension": "Tu", "compression": "Cu", "confined": "sigma1"}.get(test)
+    if test == "confined":
+        # the side walls restrain the lateral strain: E and nu are not measured here
+        target = {"sigma1": confined_strength(rock, confining)}
+        measured = {"sigma1": got.strength}
+    else:
+        target = {"E": rock.E, "nu": rock.nu}
+        measured = {"E": got.E, "nu": got.nu}
+        if strength_name:
+            target[strength_name] = getattr(rock, strength_name)
+            measured[strength_name] = got.strength
     errors = {k: measured[k] / target[k] - 1.0 for k in target}
 
     title = f"{rock.name}, {dim}D, {test}, {lattice.n} particles"
@@ -127,6 +141,7 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
         "test": test,
         "particles": lattice.n,
         "n": n,
+        "confining_Pa": confining,
         "ranks": np_,
         "plan": asdict(plan),
         "bond": asdict(bond),
@@ -142,7 +157,8 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
 
 def summary_table(summary: dict) -> str:
     """A short text table: property, target, measured, error."""
-    units = {"E": (1e9, "GPa"), "nu": (1.0, ""), "Tu": (1e6, "MPa"), "Cu": (1e6, "MPa")}
+    units = {"E": (1e9, "GPa"), "nu": (1.0, ""), "Tu": (1e6, "MPa"), "Cu": (1e6, "MPa"),
+             "sigma1": (1e6, "MPa")}
     lines = [f"{summary['rock']['name']}, {summary['dim']}D {summary['test']}, "
              f"{summary['particles']} particles, {summary['ranks']} ranks, "
              f"{summary['wall_time_s']:.1f} s",

@@ -21,7 +21,7 @@ def stress_strain_png(path: str | Path, strain: np.ndarray, stress: np.ndarray, 
                       title: str = "") -> None:
     """Measured curve with the theoretical elastic line and strength."""
     plt = _pyplot()
-    sign = -1.0 if test in ("compression", "elastic") else 1.0
+    sign = -1.0 if test in ("compression", "elastic", "confined") else 1.0
     eps, sig = sign * np.asarray(strain), sign * np.asarray(stress) / 1e6
     fig, ax = plt.subplots(figsize=(6, 4.2))
     ax.plot(eps * 1e3, sig, lw=1.5, label="lattice (measured)")
@@ -29,7 +29,7 @@ def stress_strain_png(path: str | Path, strain: np.ndarray, stress: np.ndarray, 
     line = np.linspace(0, top / (E_target / 1e6), 50)
     ax.plot(line * 1e3, line * E_target / 1e6, "k--", lw=1, label=f"E = {E_target / 1e9:.3g} GPa (theory)")
     if strength_target:
-        name = "Tu" if test == "tension" else "Cu"
+        name = {"tension": "Tu", "compression": "Cu"}.get(test, "sigma1")
         ax.axhline(strength_target / 1e6, color="r", ls=":", lw=1,
                    label=f"{name} = {strength_target / 1e6:.4g} MPa (theory)")
     kind = "compressive" if sign < 0 else "tensile"
