@@ -109,9 +109,10 @@ def test_end_to_end_elastic_run_writes_summary(tmp_path):
     assert saved["measured"] == summary["measured"]
     assert set(saved["target"]) == {"E", "nu"}
     assert (tmp_path / "stress_strain.png").stat().st_size > 10_000
-    # finite 2D blocks are softer than the infinite lattice by about 100/N %
-    # (measured: -12.7, -6.7, -3.3, -1.65 % for N = 8, 15, 30, 60; docs/validation.md)
-    assert summary["relative_error"]["E"] == pytest.approx(-0.033, abs=0.005)
+    # with the stress over the centre-to-centre width, E of the 30-across block
+    # matches the formula (measured +0.03%; the issue asks for 1%); nu carries a
+    # free-side deficit that halves as N doubles (-1.8% at N = 30, docs/validation.md)
+    assert abs(summary["relative_error"]["E"]) < 0.01
     assert summary["relative_error"]["nu"] == pytest.approx(-0.018, abs=0.005)
 
 
@@ -136,7 +137,7 @@ def test_confined_tests_give_internal_friction(tmp_path):
                       confining=p)["measured"]["sigma1"] for p in (0.0, 10e6, 20e6)]
     cu, mu_i = coulomb_envelope([0.0, 10e6, 20e6], peaks)
     # the envelope slope of the lattice follows the conversion's mu_i: measured
-    # +2.4% at N = 15 (docs/validation.md); the strength itself carries the
-    # multi-unit deficit (about -20%, as in the papers)
+    # +3.4% at N = 15 (docs/validation.md); the strength itself carries the
+    # multi-unit deficit (-13% at N = 15; papers: about -20%)
     assert mu_i == pytest.approx(rock.mu_i, rel=0.05)
     assert 0.7 * rock.Cu < cu < rock.Cu

@@ -169,12 +169,13 @@ variable        stress equal 0.5*(f_fbot[{k}]-f_ftop[{k}])/{spec.area:.8g}
     if spec.test == "confined":
         # side faces: x in 2D (area = height x unit thickness), x and y in 3D
         lateral = "x" if spec.dim == 2 else "xy"
-        depth = "1.0" if spec.dim == 2 else f"(bound(all,ymax)-bound(all,ymin)+{d!r})"
+        # areas between the outer particle centres, the convention of the
+        # platen stress (Lattice.loaded_area), so sigma1 and sigma3 agree
         sides = "# ---- confinement: smooth side walls holding the confining stress (servo) ----\n"
         for a in lateral:
             other = "y" if a == "x" else "x"
-            area = (f"$((v_hi0-v_lo0+{d!r})*(bound(all,{other}max)-bound(all,{other}min)+{d!r}))"
-                    if spec.dim == 3 else f"$((v_hi0-v_lo0+{d!r})*{depth})")
+            area = (f"$((v_hi0-v_lo0)*(bound(all,{other}max)-bound(all,{other}min)))"
+                    if spec.dim == 3 else "$(v_hi0-v_lo0)")
             sides += (f"fix             side{a}lo all lattice/wall {a}lo $(bound(all,{a}min)-{r!r}) "
                       f"{wall_kn:.6g} 0 0 servo {spec.confining:.6g} {area}\n"
                       f"fix             side{a}hi all lattice/wall {a}hi $(bound(all,{a}max)+{r!r}) "

@@ -67,11 +67,10 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
     dt = 0.1 * math.sqrt(mass / bond.Kn)
     if dim == 2:
         eta = paper_damping_2d(mass, bond.Kn, lattice_n_across(lattice))
-        area = lattice.width + d
     else:
         volume = lattice.n * math.sqrt(2) * d**3 / 2
         eta = paper_damping_3d(mass, bond.Kn, d, volume)
-        area = lattice.cross_section_area()
+    area = lattice.loaded_area()
     height = lattice.height
     wave_speed = math.sqrt(rock.E / rock.rho)
     target_strain = {"tension": rock.Tu / rock.E, "compression": rock.Cu / rock.E,
