@@ -6,8 +6,8 @@ The lattice cannot represent every rock: Poisson's ratio must lie in [0, 1/4] (2
 (3D), mu_i must not be too small, and the papers' unit must reach Cu (see
 :mod:`bonded_lattice.conversion`).  ``Rock.dims`` lists the dimensions in which all five
 properties are reproduced and ``Rock.why_not(dim)`` says why a dimension is missing.  Many
-real rocks (basalt, most marbles, sandstones with nu > 0.25) have no supported dimension; they
-are kept in the library so that the reason is one call away.
+real rocks (basalt here; many marbles and sandstones, with nu > 0.2) have no supported
+dimension; such entries are kept so that the reason is one call away.
 
 Add your own rocks with :func:`register_rock`.
 """
