@@ -92,8 +92,6 @@ def measure(thermo: Thermo, test: str, dim: int) -> Measured:
         stress = stress - stress[0]
     E = youngs_modulus(strain, stress, window)
     nu = poisson_ratio(strain, lateral, stress, window)
-    # in a confined test the side walls restrain the lateral strain: nu and E
-    # from it are not the material's; report them as measured
     if dim == 2:
         E, nu = plane_strain_from_in_plane(E, nu)
     strength = strain_at_peak = None

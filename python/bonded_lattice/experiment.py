@@ -65,8 +65,9 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
     dim, d = lattice.dim, lattice.d
     mass = lattice_mass(rock.rho, d, dim)
     dt = 0.1 * math.sqrt(mass / bond.Kn)
+    n_across = lattice_n_across(lattice)
     if dim == 2:
-        eta = paper_damping_2d(mass, bond.Kn, lattice_n_across(lattice))
+        eta = paper_damping_2d(mass, bond.Kn, n_across)
     else:
         volume = lattice.n * math.sqrt(2) * d**3 / 2
         eta = paper_damping_3d(mass, bond.Kn, d, volume)
@@ -82,7 +83,7 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
     else:
         load_time = target_strain * height / (2 * speed)
     steps = int(math.ceil(1.5 * load_time / dt))
-    return RunPlan(n=lattice_n_across(lattice), particles=lattice.n, d=d, mass=mass, dt=dt,
+    return RunPlan(n=n_across, particles=lattice.n, d=d, mass=mass, dt=dt,
                     eta=eta, speed=speed, steps=steps, area=area)
 
 

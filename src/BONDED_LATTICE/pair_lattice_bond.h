@@ -51,7 +51,6 @@ class PairLatticeBond : public Pair {
   FixLatticeBondStore *store() const { return fix_store; }
   // records of local atoms whose partner is a ghost/local index, -1 if absent
   const int *partner_index() const { return partner_idx; }
-  const BondParams &params_of(int itype, int jtype) const { return params[itype][jtype]; }
 
  protected:
   BondParams **params;
