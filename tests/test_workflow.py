@@ -111,10 +111,12 @@ def test_end_to_end_elastic_run_writes_summary(tmp_path):
     assert set(saved["target"]) == {"E", "nu"}
     assert (tmp_path / "stress_strain.png").stat().st_size > 10_000
     # with the stress over the centre-to-centre width, E of the 30-across block
-    # matches the formula (measured +0.03%; the issue asks for 1%); nu carries a
+    # matches the formula (measured +0.03%; the issue asks for 1%); nu from the
+    # mid-height gauges too (measured -0.38%), while the all-particle fit carries a
     # free-side deficit that halves as N doubles (-1.8% at N = 30, docs/validation.md)
     assert abs(summary["relative_error"]["E"]) < 0.01
-    assert summary["relative_error"]["nu"] == pytest.approx(-0.018, abs=0.005)
+    assert abs(summary["relative_error"]["nu"]) < 0.01
+    assert summary["nu_all_particles"] / 0.16 - 1 == pytest.approx(-0.018, abs=0.005)
 
 
 def test_coulomb_envelope_recovers_known_friction():

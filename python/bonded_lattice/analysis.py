@@ -1,8 +1,14 @@
 """Measure E, nu and strength from a test deck's thermo output.
 
-The decks of :mod:`bonded_lattice.decks` print ``v_strain`` (axial strain from
-the particles' extent), ``v_lateral`` (lateral strain) and ``v_stress``
-(Pa, tension positive).  Under a constant platen speed the first elastic wave
+The decks of :mod:`bonded_lattice.decks` print ``v_strain`` (axial strain: a
+least-squares slope of all particles' displacements), ``v_lateral`` (the same
+for the lateral displacements), ``v_gauge`` (lateral strain of mid-height
+gauges on the side faces) and ``v_stress`` (Pa, tension positive).
+
+Poisson's ratio comes from the gauges, as in a laboratory test: the all-particle
+fit includes the platens' end zones and the free faces' surface relaxation and
+converges slowly (3D: -3.8% at 5461 elements, -2.7% at 37681), while the gauges
+are within 1% from about 10^4 elements (docs/validation.md).  Under a constant platen speed the first elastic wave
 needs a few crossings to load the block evenly, so the elastic fits skip the
 start of the curve.
 """
@@ -21,11 +27,41 @@ class Measured:
     """What a test measured (SI units; strength is positive)."""
 
     E: float
-    nu: float
+    nu: float                   # from the mid-height gauges
     strength: float | None      # Tu (tension), Cu (compression), peak axial stress (confined)
     strain_at_peak: float | None
     broken_tension: int
     broken_shear: int
+    c_open: float | None = None         # micro-crack onset stress (compression tests)
+    first_break: float | None = None    # stress at the first broken bond (strength tests)
+    nu_all: float | None = None         # from the all-particle lateral fit
+
+
+# Micro-cracks have opened (C_open) once this fraction of the initial bonds has
+# broken in tension: a few bonds at the boundary break earlier (Liu et al. 2017,
+# Fig. 5, point A3), so the very first break would mark a boundary effect.
+C_OPEN_FRACTION = 0.01
+
+
+def crack_onset(stress: np.ndarray, broken_tension: np.ndarray, intact0: float,
+                fraction: float = C_OPEN_FRACTION) -> tuple[float | None, float | None]:
+    """C_open and the stress at the first break, both positive (None if nothing broke).
+
+    stress: axial stress magnitude; broken_tension: bonds broken in tension so far;
+    intact0: bonds at the start.  C_open is the stress at the last row before the
+    tension-broken count first exceeds ``fraction`` of the initial bonds, i.e. the
+    stress the block carried when its micro-cracks formed.
+    """
+    broken = np.asarray(broken_tension)
+    if broken.max(initial=0) <= 0:
+        return None, None
+    ifirst = int(np.argmax(broken > 0))
+    first = float(stress[max(ifirst - 1, 0)])
+    many = broken > fraction * intact0
+    if not many.any():
+        return None, first
+    iopen = int(np.argmax(many))
+    return float(stress[max(iopen - 1, 0)]), first
 
 
 # Elastic windows as fractions of the peak |stress|.  In compression the
@@ -90,18 +126,29 @@ def measure(thermo: Thermo, test: str, dim: int) -> Measured:
     if test == "confined":
         # the confinement preloads the block: fit on the axial stress change
         stress = stress - stress[0]
-    E = youngs_modulus(strain, stress, window)
-    nu = poisson_ratio(strain, lateral, stress, window)
+    gauge = thermo.get("v_gauge", lateral)
+    E2 = youngs_modulus(strain, stress, window)
+    nu = poisson_ratio(strain, gauge, stress, window)
+    nu_all = poisson_ratio(strain, lateral, stress, window)
+    E = E2
     if dim == 2:
-        E, nu = plane_strain_from_in_plane(E, nu)
-    strength = strain_at_peak = None
+        E, nu = plane_strain_from_in_plane(E2, nu)
+        nu_all = plane_strain_from_in_plane(E2, nu_all)[1]
+    strength = strain_at_peak = opening = first = None
     if test in ("tension", "compression", "confined"):
         signed = thermo["v_stress"] if test == "tension" else -thermo["v_stress"]
         ipeak = int(np.argmax(signed))
         strength, strain_at_peak = float(signed[ipeak]), float(strain[ipeak])
+        # only rows up to the peak: after it the block is falling apart
+        upto = slice(0, ipeak + 1)
+        opening, first = crack_onset(signed[upto], thermo["c_bonds[2]"][upto],
+                                     float(thermo["c_bonds[1]"][0]))
+        if test == "tension":
+            opening = None   # micro-cracks open in compression; in tension the first break fails it
     return Measured(E=E, nu=nu, strength=strength, strain_at_peak=strain_at_peak,
                     broken_tension=int(thermo["c_bonds[2]"][-1]),
-                    broken_shear=int(thermo["c_bonds[3]"][-1]))
+                    broken_shear=int(thermo["c_bonds[3]"][-1]), c_open=opening,
+                    first_break=first, nu_all=nu_all)
 
 
 def coulomb_envelope(sigma3: np.ndarray, sigma1: np.ndarray) -> tuple[float, float]:

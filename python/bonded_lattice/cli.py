@@ -1,9 +1,10 @@
-"""Command-line tool ``bonded-lattice``: convert, generate, run.
+"""Command-line tool ``bonded-lattice``: convert, generate, run, envelope, calibrate.
 
     bonded-lattice convert --rock quartz --dim 2
     bonded-lattice convert --dim 3 --bond 4.6794e7 8.0679e6 1.7037e-7 18.452 0.39645
     bonded-lattice generate --rock quartz --dim 2 --test tension --n 30 --out tension2d
     bonded-lattice run --rock quartz --dim 2 --test compression --n 30 --np 2 --out run2d
+    bonded-lattice calibrate --rock quartz --dim 2 --n 15 --out cal2d
 """
 
 from __future__ import annotations
@@ -41,8 +42,8 @@ def cmd_convert(args: argparse.Namespace) -> int:
 
 def cmd_generate(args: argparse.Namespace) -> int:
     from .conversion import rock_to_bond
-    from .decks import DeckSpec, write_deck
-    from .experiment import build_lattice, plan_test
+    from .decks import write_deck
+    from .experiment import build_lattice, deck_spec, has_mid_height, plan_test
     from .lattice import write_data
 
     rock = _rock(args)
@@ -50,12 +51,10 @@ def cmd_generate(args: argparse.Namespace) -> int:
     out.mkdir(parents=True, exist_ok=True)
     bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, args.d, args.dim)
     lattice = build_lattice(args.dim, args.n, args.d)
-    plan = plan_test(rock, bond, lattice, args.test, args.crossings, args.speed, args.confining)
+    plan = plan_test(rock, bond, lattice, args.test, **_plan_options(args))
     write_data(lattice, out / "data.lattice", plan.mass)
-    spec = DeckSpec(test=args.test, dim=args.dim, d=args.d, bond=bond, data_file="data.lattice",
-                    area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps, dt=plan.dt,
-                    thermo_every=max(1, plan.steps // 400), confining=args.confining)
-    write_deck(spec, out / f"in.{args.test}")
+    write_deck(deck_spec(plan, args.test, args.dim, bond, args.confining, args.dump_every,
+                         has_mid_height(lattice)), out / f"in.{args.test}")
     print(f"wrote {out / 'data.lattice'} ({lattice.n} particles) and {out / ('in.' + args.test)}")
     print(f"run it with: cd {out} && mpirun -np 2 lmp -in in.{args.test}")
     return 0
@@ -65,8 +64,8 @@ def cmd_run(args: argparse.Namespace) -> int:
     from .experiment import run_test, summary_table
 
     summary = run_test(_rock(args), args.dim, args.test, args.n, args.out, np_=args.np,
-                       d=args.d, crossings=args.crossings, speed=args.speed,
-                       progress=not args.quiet, confining=args.confining)
+                       d=args.d, progress=not args.quiet, dump_every=args.dump_every,
+                       **_plan_options(args))
     print(summary_table(summary))
     print(f"results in {args.out}: summary.json, stress_strain.png"
           + (", broken_bonds.png" if args.test != "elastic" else ""))
@@ -80,9 +79,9 @@ def cmd_envelope(args: argparse.Namespace) -> int:
     rock = _rock(args)
     peaks = []
     for p in args.pressures:
+        options = {**_plan_options(args), "confining": p}
         summary = run_test(rock, args.dim, "confined", args.n, Path(args.out) / f"confined_{p:g}",
-                           np_=args.np, d=args.d, crossings=args.crossings, speed=args.speed,
-                           progress=not args.quiet, confining=p)
+                           np_=args.np, d=args.d, progress=not args.quiet, **options)
         peaks.append(summary["measured"]["sigma1"])
         print(f"sigma3 = {p / 1e6:8.3f} MPa   sigma1 = {peaks[-1] / 1e6:9.3f} MPa "
               f"(Coulomb target {summary['target']['sigma1'] / 1e6:9.3f} MPa)")
@@ -90,6 +89,17 @@ def cmd_envelope(args: argparse.Namespace) -> int:
     print(f"envelope: Cu = {cu / 1e6:.4g} MPa (target {rock.Cu / 1e6:.4g}), "
           f"mu_i = {mu_i:.4g} (target {rock.mu_i:.4g})")
     return 0
+
+
+def cmd_calibrate(args: argparse.Namespace) -> int:
+    from .calibration import calibrate, calibration_table
+
+    result = calibrate(_rock(args), args.dim, args.n, args.out, np_=args.np, d=args.d,
+                       tol=args.tol, max_runs=args.max_runs, progress=not args.quiet,
+                       **{k: v for k, v in _plan_options(args).items() if k != "confining"})
+    print(calibration_table(result))
+    print(f"details in {Path(args.out) / 'calibration.json'}")
+    return 0 if result.converged else 1
 
 
 def cmd_info(args: argparse.Namespace) -> int:
@@ -100,20 +110,45 @@ def cmd_info(args: argparse.Namespace) -> int:
     return 0
 
 
-def _common(p: argparse.ArgumentParser, test: bool = True) -> None:
+def _plan_options(args: argparse.Namespace) -> dict:
+    """The loading options of a test, as keyword arguments of experiment.plan_test."""
+    return {"crossings": args.crossings, "speed": args.speed,
+            "confining": getattr(args, "confining", 0.0),
+            "schedule": args.schedule, "damping": args.damping,
+            "elastic_strain": args.elastic_strain, "step_size": args.step_size,
+            "relax_steps": args.relax_steps}
+
+
+def _common(p: argparse.ArgumentParser, test: bool = True, choose_test: bool = True) -> None:
+    """Options shared by the subcommands; ``choose_test`` adds --test and --confining."""
     p.add_argument("--rock", default="quartz", help="rock from the library (default quartz)")
     p.add_argument("--dim", type=int, choices=(2, 3), default=2)
     p.add_argument("--d", type=float, default=1.0e-3, help="particle diameter in m (default 1e-3)")
-    if test:
+    if test and choose_test:
         p.add_argument("--test", choices=("tension", "compression", "elastic", "confined"),
                        default="compression")
         p.add_argument("--confining", type=float, default=0.0,
                        help="confining stress of --test confined, Pa (compression positive)")
+    if test:
         p.add_argument("--n", type=int, default=30,
                        help="particles across (2D) or elements along y (3D); default 30")
         p.add_argument("--crossings", type=float, default=100.0,
                        help="elastic wave crossings during loading (quasi-static control)")
         p.add_argument("--speed", type=float, default=None, help="platen speed in m/s (overrides --crossings)")
+        p.add_argument("--schedule", choices=("constant", "paper"), default="constant",
+                       help="constant: platens at constant speed (default, fast); paper: the "
+                       "papers' stepwise loading with relaxation steps (slow reference)")
+        p.add_argument("--step-size", type=float, default=None,
+                       help="paper schedule: platen displacement per loading step, m")
+        p.add_argument("--relax-steps", type=int, default=None,
+                       help="paper schedule: time steps after each loading step")
+        p.add_argument("--damping", type=float, default=1.0,
+                       help="viscous damping as a multiple of the papers' eta (default 1)")
+        p.add_argument("--elastic-strain", type=float, default=1.0e-4,
+                       help="axial strain reached by --test elastic (default 1e-4)")
+        p.add_argument("--dump-every", type=int, default=0,
+                       help="write dump.lammpstrj every this many steps (0: only the first "
+                       "and last configurations)")
         p.add_argument("--out", default="bonded-lattice-run", help="output folder")
 
 
@@ -146,6 +181,16 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_envelope)
+
+    p = sub.add_parser("calibrate", help="adjust the bond parameters until this lattice's "
+                       "E, nu, Tu and Cu match the rock")
+    _common(p, choose_test=False)
+    p.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
+    p.add_argument("--tol", type=float, default=0.01,
+                   help="relative tolerance per property (default 0.01)")
+    p.add_argument("--max-runs", type=int, default=5, help="test runs per stage at most")
+    p.add_argument("--quiet", action="store_true", help="no progress output")
+    p.set_defaults(func=cmd_calibrate)
 
     p = sub.add_parser("info", help="package version and plugin location")
     p.set_defaults(func=cmd_info)

@@ -14,10 +14,20 @@ and loads the block along its loading axis (y in 2D, z in 3D):
   (``fix lattice/wall ... servo``) hold the confining stress ``confining``
   (biaxial in 2D, triaxial in 3D).
 
+Two loading schedules:
+
+- ``constant`` (ours, the default): platens or end layers move at a constant
+  ``speed``; the speed is chosen so that loading takes many elastic-wave
+  crossings of the block;
+- ``stepwise`` (the papers'): platens or end layers jump by ``step_size``
+  each, then the block relaxes for ``relax_steps`` time steps (Liu et al. 2013:
+  400 steps; Liu et al. 2017: 100 steps).
+
 Every deck prints the same thermo columns, which :mod:`bonded_lattice.analysis`
-reads: ``Step Time v_strain v_lateral v_stress c_bonds[1..4] KinEng``
-(strain and lateral strain from the particles' extent, stress in Pa,
-tension positive).
+reads: ``Step Time v_strain v_lateral v_gauge v_stress c_bonds[1..4] KinEng``
+(axial and lateral strain as least-squares slopes of all particles'
+displacements, the lateral strain of mid-height gauges on the side faces,
+stress in Pa, tension positive).
 """
 
 from __future__ import annotations
@@ -29,6 +39,7 @@ from typing import TextIO
 from .conversion import BondParameters
 
 TESTS = ("tension", "compression", "elastic", "confined")
+SCHEDULES = ("constant", "stepwise")
 
 
 @dataclass(frozen=True)
@@ -42,23 +53,39 @@ class DeckSpec:
     data_file: str            # LAMMPS data file, relative to the deck
     area: float               # loaded cross-section (m^2; per unit thickness in 2D: width x 1)
     eta: float                # viscous damping coefficient (N s/m)
-    speed: float              # platen speed per side (m/s)
+    speed: float              # platen speed per side (m/s), constant schedule
     steps: int                # time steps to run
     dt: float = 2.0e-8        # time step (s)
     thermo_every: int = 500
     dump_every: int = 0       # >0: dump particles with their intact-bond count
     wall_kn: float | None = None  # platen stiffness, default 2*Kn
     confining: float = 0.0    # confining stress of the confined test (Pa, compression positive)
+    schedule: str = "constant"  # one of SCHEDULES
+    step_size: float = 0.0    # stepwise: displacement of each platen per loading step (m)
+    relax_steps: int = 0      # stepwise: time steps after each loading step
+    gauges: bool = True       # mid-height lateral gauges (False: blocks of 1-2 layers)
+    halt_fraction: float = 0.3  # strength tests stop when |stress| < this x peak (0: never)
 
     def __post_init__(self) -> None:
         if self.test not in TESTS:
             raise ValueError(f"test = {self.test!r} is not known: use one of {', '.join(TESTS)}")
         if self.dim not in (2, 3):
             raise ValueError(f"dim = {self.dim} is out of range: use 2 or 3")
-        for name in ("d", "area", "speed", "dt"):
+        if self.schedule not in SCHEDULES:
+            raise ValueError(f"schedule = {self.schedule!r} is not known: use one of "
+                             f"{', '.join(SCHEDULES)}")
+        positive = ("d", "area", "dt") + (("speed",) if self.schedule == "constant"
+                                          else ("step_size",))
+        for name in positive:
             value = getattr(self, name)
             if not value > 0:
                 raise ValueError(f"{name} = {value} is out of range: need {name} > 0")
+        if self.schedule == "stepwise" and self.relax_steps < 1:
+            raise ValueError(f"relax_steps = {self.relax_steps} is out of range: the stepwise "
+                             "schedule needs relax_steps >= 1")
+        if not 0 <= self.halt_fraction < 1:
+            raise ValueError(f"halt_fraction = {self.halt_fraction} is out of range: need "
+                             "0 <= halt_fraction < 1")
         if self.eta < 0:
             raise ValueError(f"eta = {self.eta} is out of range: need eta >= 0")
         if self.confining < 0:
@@ -126,7 +153,41 @@ compute         lat all reduce sum v_x0 c_disp[1] v_x0ux v_x0sq
 compute         ax all reduce sum v_a0 c_disp[{k}] v_a0ua v_a0sq
 variable        strain equal (count(all)*c_ax[3]-c_ax[1]*c_ax[2])/(count(all)*c_ax[4]-c_ax[1]^2)
 variable        lateral equal (count(all)*c_lat[3]-c_lat[1]*c_lat[2])/(count(all)*c_lat[4]-c_lat[1]^2)
-"""
+""" + _gauges(spec)
+
+
+def _gauges(spec: DeckSpec) -> str:
+    """Lateral strain gauges: the outermost particles of each side face at mid-height.
+
+    Like strain gauges glued to a rock specimen, they sit away from the platens'
+    end zones; the gauge strain is the change of the distance between the centres
+    of the two faces' particles.  3D has gauges on the x and the y faces.
+    """
+    if not spec.gauges:
+        return ("# no particles at mid-height (a single unit): the gauge is the all-particle fit\n"
+                "variable        gauge equal v_lateral\n")
+    ax, d = spec.axis, spec.d
+    zone = (f"$(v_lo0+0.25*v_H0) $(v_hi0-0.25*v_H0)")
+    text = "# lateral strain gauges: outermost particles of the side faces at mid-height\n"
+    names = []
+    for a in ("x",) if spec.dim == 2 else ("x", "y"):
+        k = "xyz".index(a) + 1
+        for side, lo, hi in (("hi", f"$(bound(all,{a}max)-{0.6 * d!r})", "INF"),
+                             ("lo", "INF", f"$(bound(all,{a}min)+{0.6 * d!r})")):
+            bounds = {"x": ["INF", "INF"], "y": ["INF", "INF"], "z": ["INF", "INF"]}
+            bounds[a] = [lo, hi]
+            bounds[ax] = zone.split()
+            g = f"g{a}{side}"
+            text += (f"region          {g} block {' '.join(bounds['x'] + bounds['y'] + bounds['z'])} "
+                     f"units box\n"
+                     f"group           {g} region {g}\n"
+                     f"compute         u{g} {g} reduce ave c_disp[{k}]\n")
+        text += (f"variable        gauge_{a} equal (c_ug{a}hi-c_ug{a}lo)/"
+                 f"$(xcm(g{a}hi,{a})-xcm(g{a}lo,{a}))\n")
+        names.append(f"v_gauge_{a}")
+    mean = "+".join(names)
+    text += f"variable        gauge equal ({mean})/{len(names)}\n"
+    return text
 
 
 def _slab(axis: str, lo: str, hi: str) -> str:
@@ -145,23 +206,37 @@ def _loading(spec: DeckSpec) -> str:
     ax, d = spec.axis, spec.d
     k = "xyz".index(ax) + 1  # index of the axis in fix outputs
     if spec.test == "tension":
+        if spec.schedule == "constant":
+            title = f"end layers moving apart at {spec.speed:g} m/s"
+            move_top = f"linear {_vector(ax, f'{spec.speed:.6g}', 'NULL')}"
+            move_bot = f"linear {_vector(ax, f'{-spec.speed:.6g}', 'NULL')}"
+            variables = ""
+        else:
+            title = (f"end layers jumping apart by {spec.step_size:g} m every "
+                     f"{spec.relax_steps} steps")
+            variables = (f"variable        dtop equal {spec.step_size:.6g}*ceil((step-v_s0)/{spec.relax_steps})\n"
+                         f"variable        dbot equal -v_dtop\n")
+            move_top = f"variable {_vector(ax, 'v_dtop', 'NULL')} NULL NULL NULL"
+            move_bot = f"variable {_vector(ax, 'v_dbot', 'NULL')} NULL NULL NULL"
         return f"""
-# ---- loading: end layers held by smooth planes moving apart at {spec.speed:g} m/s ----
+# ---- loading: {title} ----
+# the end layers are held by smooth planes: only their axial motion is
+# prescribed (fix move); sideways they move freely with the block
 region          toplayer block {_slab(ax, f"$(v_hi0-{0.25 * d!r})", "INF")} units box
 region          botlayer block {_slab(ax, "INF", f"$(v_lo0+{0.25 * d!r})")} units box
 group           top region toplayer
 group           bottom region botlayer
 group           inner subtract all top bottom
 velocity        all set 0 0 0 units box
-velocity        top set {_vector(ax, f"{spec.speed:.6g}")} units box
-velocity        bottom set {_vector(ax, f"{-spec.speed:.6g}")} units box
-# the planes are smooth: only the axial force is taken over (and reported)
-fix             ftop top setforce {_vector(ax, "0.0", "NULL")}
-fix             fbot bottom setforce {_vector(ax, "0.0", "NULL")}
-fix             integrate all nve
+variable        s0 equal $(step)
+{variables}fix             ptop top move {move_top}
+fix             pbot bottom move {move_bot}
+fix             integrate inner nve
 fix             damp inner lattice/viscous {spec.eta:.6g}
 # stress (tension positive) from the force the block exerts on the end layers
-variable        stress equal 0.5*(f_fbot[{k}]-f_ftop[{k}])/{spec.area:.8g}
+compute         ftop top reduce sum f{ax}
+compute         fbot bottom reduce sum f{ax}
+variable        stress equal 0.5*(c_fbot-c_ftop)/{spec.area:.8g}
 """
     wall_kn = spec.wall_kn if spec.wall_kn is not None else 2.0 * spec.bond.Kn
     r = 0.5 * d
@@ -180,10 +255,23 @@ variable        stress equal 0.5*(f_fbot[{k}]-f_ftop[{k}])/{spec.area:.8g}
                       f"{wall_kn:.6g} 0 0 servo {spec.confining:.6g} {area}\n"
                       f"fix             side{a}hi all lattice/wall {a}hi $(bound(all,{a}max)+{r!r}) "
                       f"{wall_kn:.6g} 0 0 servo {spec.confining:.6g} {area}\n")
+    if spec.schedule == "constant":
+        title = f"moving in at {spec.speed:g} m/s"
+        variables = ""
+        bottom = f"$(v_lo0-{r!r}) {wall_kn:.6g} 0 0 vel {spec.speed:.6g}"
+        top = f"$(v_hi0+{r!r}) {wall_kn:.6g} 0 0 vel {-spec.speed:.6g}"
+    else:
+        title = f"jumping in by {spec.step_size:g} m every {spec.relax_steps} steps"
+        jump = f"{spec.step_size:.6g}*ceil((step-v_s0)/{spec.relax_steps})"
+        variables = (f"variable        s0 equal $(step)\n"
+                     f"variable        wbot equal $(v_lo0-{r!r})+{jump}\n"
+                     f"variable        wtop equal $(v_hi0+{r!r})-{jump}\n")
+        bottom = f"v_wbot {wall_kn:.6g} 0 0"
+        top = f"v_wtop {wall_kn:.6g} 0 0"
     return sides + f"""
-# ---- loading: smooth platens touching the end layers, moving in at {spec.speed:g} m/s ----
-fix             bottom all lattice/wall {ax}lo $(v_lo0-{r!r}) {wall_kn:.6g} 0 0 vel {spec.speed:.6g}
-fix             top all lattice/wall {ax}hi $(v_hi0+{r!r}) {wall_kn:.6g} 0 0 vel {-spec.speed:.6g}
+# ---- loading: smooth platens touching the end layers, {title} ----
+{variables}fix             bottom all lattice/wall {ax}lo {bottom}
+fix             top all lattice/wall {ax}hi {top}
 fix             integrate all nve
 fix             damp all lattice/viscous {spec.eta:.6g}
 # stress (tension positive) from the platen forces
@@ -195,21 +283,30 @@ def _output(spec: DeckSpec) -> str:
     dump = ""
     if spec.dump_every > 0:
         dump = f"""dump            particles all custom {spec.dump_every} dump.lammpstrj id type x y z c_nbonds
-dump_modify     particles sort id
+dump_modify     particles sort id format float %.17g
+"""
+    halt = ""
+    if spec.test != "elastic" and spec.halt_fraction > 0:
+        halt = f"""# stop once the block has failed: |stress| below {spec.halt_fraction:g} of its peak so far
+variable        smag equal abs(v_stress)
+fix             peaklog all vector {spec.thermo_every} v_smag
+variable        failed equal v_smag<{spec.halt_fraction:g}*max(f_peaklog)
+fix             stop all halt {spec.thermo_every} v_failed > 0.5 error continue
 """
     return f"""
 # ---- output ----
 compute         bonds all lattice/bonds
 compute         nbonds all lattice/bonds
-thermo_style    custom step time v_strain v_lateral v_stress c_bonds[1] c_bonds[2] c_bonds[3] c_bonds[4] ke
+thermo_style    custom step time v_strain v_lateral v_gauge v_stress c_bonds[1] c_bonds[2] c_bonds[3] c_bonds[4] ke
 thermo_modify   norm no flush yes
 thermo          {spec.thermo_every}
 timestep        {spec.dt:.6g}
 # run 0 makes the bonds, so the first dump shows them
 run             0
-write_dump      all custom dump.initial id type x y z c_nbonds modify sort id
-{dump}run             {spec.steps}
-write_dump      all custom dump.final id type x y z c_nbonds modify sort id
+# full precision: displacements of 1e-7 m vanish in the default %g format
+write_dump      all custom dump.initial id type x y z c_nbonds modify sort id format float %.17g
+{dump}{halt}run             {spec.steps}
+write_dump      all custom dump.final id type x y z c_nbonds modify sort id format float %.17g
 """
 
 

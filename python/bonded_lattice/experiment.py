@@ -9,12 +9,14 @@ from __future__ import annotations
 
 import json
 import math
+
+import numpy as np
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from . import __version__
 from .analysis import measure
-from .conversion import BondParameters, lattice_mass, paper_damping_2d, paper_damping_3d, rock_to_bond
+from .conversion import BondParameters, c_open, lattice_mass, paper_damping_2d, paper_damping_3d, rock_to_bond
 from .decks import DeckSpec, write_deck
 from .lattice import Lattice, close_packed_block_3d, hex_block_2d, write_data
 from .plotting import broken_bond_map_png, stress_strain_png
@@ -35,11 +37,32 @@ class RunPlan:
     speed: float
     steps: int
     area: float
+    schedule: str = "constant"
+    step_size: float = 0.0
+    relax_steps: int = 0
+    thermo_every: int = 1
 
 
 def build_lattice(dim: int, n: int, d: float) -> Lattice:
     """The papers' blocks: n particles across (2D) or n elements along y (3D)."""
     return hex_block_2d(n, d) if dim == 2 else close_packed_block_3d(n, d)
+
+
+# The papers' stepwise schedules for 1 mm particles (REFERENCE.md): displacement of
+# each platen per loading step (m) and time steps of relaxation after each; time
+# step as a fraction of sqrt(m/Kn) (2e-8 s in 2D and 1e-8 s in 3D for quartz).
+PAPER_SCHEDULES = {
+    2: {"relax_steps": 400, "dt_fraction": 0.10715,
+        "step_size": {"elastic": 6.0e-10, "tension": 1.9e-10, "compression": 1.9e-9,
+                      "confined": 1.9e-9}},
+    3: {"relax_steps": 100, "dt_fraction": 0.04997,
+        "step_size": {"elastic": 1.7e-10, "tension": 1.7e-10, "compression": 1.7e-9,
+                      "confined": 1.7e-9}},
+}
+RUN_MARGIN = {"elastic": 1.5, "tension": 2.5, "compression": 2.5, "confined": 2.5}
+DEFAULT_DT_FRACTION = 0.1      # of sqrt(m/Kn), the constant schedule's time step
+THERMO_LINES = 400             # thermo rows per run: enough points for the fits
+SCHEDULE_NAMES = ("constant", "paper")
 
 
 def confined_strength(rock: Rock, confining: float) -> float:
@@ -49,42 +72,110 @@ def confined_strength(rock: Rock, confining: float) -> float:
     return rock.Cu + big_i * confining
 
 
+def target_strain(rock: Rock, test: str, confining: float = 0.0,
+                  elastic_strain: float = 1.0e-4) -> float:
+    """Axial strain magnitude the test must reach: failure strain or the elastic test's strain."""
+    return {"tension": rock.Tu / rock.E, "compression": rock.Cu / rock.E,
+            "elastic": elastic_strain,
+            "confined": confined_strength(rock, confining) / rock.E}[test]
+
+
 def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
               crossings: float = 100.0, speed: float | None = None,
-              confining: float = 0.0) -> RunPlan:
-    """Choose time step, damping, platen speed and run length.
+              confining: float = 0.0, schedule: str = "constant",
+              damping: float = 1.0, elastic_strain: float = 1.0e-4,
+              step_size: float | None = None, relax_steps: int | None = None) -> RunPlan:
+    """Choose time step, damping, loading and run length.
 
-    - dt = 0.1 sqrt(m/Kn): a tenth of the bond's vibration time scale (the
-      papers' 2e-8 s for 1 mm quartz in 2D);
-    - eta: the papers' damping (2D sqrt(8 m Kn)/N, 3D d/V^(1/3) sqrt(8 m Kn));
-    - speed: slow enough that loading to failure takes ``crossings`` elastic
-      wave crossings of the block (quasi-static), unless given;
-    - steps: 1.5 times the expected time to failure (or to strain 1e-4 for the
-      elastic test).
+    - eta: ``damping`` times the papers' damping (2D sqrt(8 m Kn)/N,
+      3D d/V^(1/3) sqrt(8 m Kn));
+    - schedule ``constant`` (ours): dt = 0.1 sqrt(m/Kn) (the papers' 2e-8 s for
+      1 mm quartz in 2D); platens move at a speed slow enough that loading to
+      failure takes ``crossings`` elastic wave crossings of the block, unless
+      ``speed`` is given;
+    - schedule ``paper``: the papers' time step, platen displacement per loading
+      step (scaled with d / 1 mm) and relaxation steps after each
+      (PAPER_SCHEDULES), unless ``step_size`` or ``relax_steps`` are given;
+    - steps: RUN_MARGIN times the time to reach the failure strain Cu/E or Tu/E
+      (or ``elastic_strain``), counting the platens' spring overlap; strength
+      decks stop by themselves once the block has failed (fix halt), and a
+      single unit softens after its bonds open (3D: fails at 1.75 Cu/E).
     """
+    if schedule not in SCHEDULE_NAMES:
+        raise ValueError(f"schedule = {schedule!r} is not known: use one of "
+                         f"{', '.join(SCHEDULE_NAMES)}")
+    if not damping >= 0:
+        raise ValueError(f"damping = {damping} is out of range: need damping >= 0 "
+                         "(a multiple of the papers' eta)")
+    if not 0 < elastic_strain < 0.01:
+        raise ValueError(f"elastic_strain = {elastic_strain} is out of range: need "
+                         "0 < elastic_strain < 0.01 (small strain)")
     dim, d = lattice.dim, lattice.d
     mass = lattice_mass(rock.rho, d, dim)
-    dt = 0.1 * math.sqrt(mass / bond.Kn)
     n_across = lattice_n_across(lattice)
     if dim == 2:
         eta = paper_damping_2d(mass, bond.Kn, n_across)
     else:
         volume = lattice.n * math.sqrt(2) * d**3 / 2
         eta = paper_damping_3d(mass, bond.Kn, d, volume)
+    eta *= damping
     area = lattice.loaded_area()
     height = lattice.height
+    strain = target_strain(rock, test, confining, elastic_strain)
+    # travel of each platen: the block's share plus the platen springs' overlap,
+    # which matters for small blocks (a single unit rests on one or two particles)
+    travel = strain * height / 2 + strain * rock.E * area / (end_particles(lattice) * 2 * bond.Kn)
+    margin = RUN_MARGIN[test]
+    if schedule == "paper":
+        paper = PAPER_SCHEDULES[dim]
+        dt = paper["dt_fraction"] * math.sqrt(mass / bond.Kn)
+        step_size = step_size if step_size is not None else paper["step_size"][test] * d / 1.0e-3
+        relax_steps = relax_steps if relax_steps is not None else paper["relax_steps"]
+        if not step_size > 0 or relax_steps < 1:
+            raise ValueError(f"step_size = {step_size}, relax_steps = {relax_steps}: need "
+                             "step_size > 0 and relax_steps >= 1")
+        loading_steps = int(math.ceil(margin * travel / step_size))
+        steps = loading_steps * relax_steps
+        speed = step_size / (relax_steps * dt)     # the mean platen speed
+        # thermo at the end of relaxation periods only
+        thermo_every = relax_steps * max(1, loading_steps // THERMO_LINES)
+        return RunPlan(n=n_across, particles=lattice.n, d=d, mass=mass, dt=dt, eta=eta,
+                       speed=speed, steps=steps, area=area, schedule="stepwise",
+                       step_size=step_size, relax_steps=relax_steps, thermo_every=thermo_every)
+    dt = DEFAULT_DT_FRACTION * math.sqrt(mass / bond.Kn)
     wave_speed = math.sqrt(rock.E / rock.rho)
-    target_strain = {"tension": rock.Tu / rock.E, "compression": rock.Cu / rock.E,
-                     "elastic": 1.0e-4,
-                     "confined": confined_strength(rock, confining) / rock.E}[test]
     load_time = crossings * height / wave_speed
     if speed is None:
-        speed = target_strain * height / (2 * load_time)
+        speed = travel / load_time
     else:
-        load_time = target_strain * height / (2 * speed)
-    steps = int(math.ceil(1.5 * load_time / dt))
+        load_time = travel / speed
+    steps = int(math.ceil(margin * load_time / dt))
     return RunPlan(n=n_across, particles=lattice.n, d=d, mass=mass, dt=dt,
-                    eta=eta, speed=speed, steps=steps, area=area)
+                   eta=eta, speed=speed, steps=steps, area=area,
+                   thermo_every=max(1, steps // THERMO_LINES))
+
+
+def end_particles(lattice: Lattice) -> int:
+    """Particles in the bottom layer: those touching a platen."""
+    h = lattice.positions[:, lattice.axis]
+    return int(np.count_nonzero(h <= h.min() + 0.1 * lattice.d))
+
+
+def has_mid_height(lattice: Lattice) -> bool:
+    """Whether particles lie in the middle half of the height (for the lateral gauges)."""
+    h = lattice.positions[:, lattice.axis]
+    lo, hi = h.min(), h.max()
+    return bool(np.any(np.abs(h - 0.5 * (lo + hi)) <= 0.25 * (hi - lo)) and lattice.n > 4)
+
+
+def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
+              confining: float = 0.0, dump_every: int = 0, gauges: bool = True) -> DeckSpec:
+    """The deck of a planned run (reads ``data.lattice`` beside it)."""
+    return DeckSpec(gauges=gauges, test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
+                    area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps,
+                    dt=plan.dt, thermo_every=plan.thermo_every, confining=confining,
+                    schedule=plan.schedule, step_size=plan.step_size,
+                    relax_steps=plan.relax_steps, dump_every=dump_every)
 
 
 def lattice_n_across(lattice: Lattice) -> int:
@@ -94,20 +185,26 @@ def lattice_n_across(lattice: Lattice) -> int:
 
 
 def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int = 2,
-             d: float = 1.0e-3, crossings: float = 100.0, speed: float | None = None,
-             progress: bool = True, confining: float = 0.0) -> dict:
-    """Run one test end to end and return the summary (also written to summary.json)."""
+             d: float = 1.0e-3, progress: bool = True, bond: BondParameters | None = None,
+             dump_every: int = 0, **plan_options) -> dict:
+    """Run one test end to end and return the summary (also written to summary.json).
+
+    bond: bond parameters to use instead of the rock's converted ones (calibration);
+        the targets stay the rock's properties.
+    plan_options: passed to :func:`plan_test` (crossings, speed, confining,
+        schedule, damping, elastic_strain, step_size, relax_steps).
+    """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, d, dim)
+    confining = plan_options.get("confining", 0.0)
+    if bond is None:
+        bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, d, dim)
     lattice = build_lattice(dim, n, d)
-    plan = plan_test(rock, bond, lattice, test, crossings, speed, confining)
+    plan = plan_test(rock, bond, lattice, test, **plan_options)
     write_data(lattice, out / "data.lattice", plan.mass)
-    spec = DeckSpec(test=test, dim=dim, d=d, bond=bond, data_file="data.lattice", area=plan.area,
-                    eta=plan.eta, speed=plan.speed, steps=plan.steps, dt=plan.dt,
-                    thermo_every=max(1, plan.steps // 400), confining=confining)
     deck = out / f"in.{test}"
-    write_deck(spec, deck)
+    write_deck(deck_spec(plan, test, dim, bond, confining, dump_every, has_mid_height(lattice)),
+               deck)
     result: RunResult = run_deck(deck, out, np_=np_, total_steps=plan.steps, progress=progress)
     if result.returncode != 0:
         raise RuntimeError(f"LAMMPS failed in {out}: {result.error}")
@@ -125,6 +222,9 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
         if strength_name:
             target[strength_name] = getattr(rock, strength_name)
             measured[strength_name] = got.strength
+        if test == "compression" and got.c_open is not None and rock.nu > 0:
+            target["C_open"] = c_open(rock.Tu, rock.nu, dim)
+            measured["C_open"] = got.c_open
     errors = {k: measured[k] / target[k] - 1.0 for k in target}
 
     title = f"{rock.name}, {dim}D, {test}, {lattice.n} particles"
@@ -149,6 +249,8 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
         "measured": measured,
         "relative_error": errors,
         "broken_bonds": {"tension": got.broken_tension, "shear": got.broken_shear},
+        "first_break_stress": got.first_break,
+        "nu_all_particles": got.nu_all,
         "wall_time_s": result.wall_time,
     }
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
@@ -158,14 +260,14 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
 def summary_table(summary: dict) -> str:
     """A short text table: property, target, measured, error."""
     units = {"E": (1e9, "GPa"), "nu": (1.0, ""), "Tu": (1e6, "MPa"), "Cu": (1e6, "MPa"),
-             "sigma1": (1e6, "MPa")}
+             "sigma1": (1e6, "MPa"), "C_open": (1e6, "MPa")}
     lines = [f"{summary['rock']['name']}, {summary['dim']}D {summary['test']}, "
              f"{summary['particles']} particles, {summary['ranks']} ranks, "
              f"{summary['wall_time_s']:.1f} s",
-             f"{'property':>9s} {'target':>12s} {'measured':>12s} {'error':>9s}"]
+             f"{'property':>13s} {'target':>12s} {'measured':>12s} {'error':>9s}"]
     for key, target in summary["target"].items():
         scale, unit = units[key]
         got = summary["measured"][key]
-        lines.append(f"{key + (' (' + unit + ')' if unit else ''):>9s} {target / scale:12.5g} "
+        lines.append(f"{key + (' (' + unit + ')' if unit else ''):>13s} {target / scale:12.5g} "
                      f"{got / scale:12.5g} {100 * summary['relative_error'][key]:+8.2f}%")
     return "\n".join(lines)

@@ -5,7 +5,9 @@
    radius R whose centre lies a distance h inside the wall overlaps it by
    delta = R - h; the wall pushes it inward with Kn*delta and resists
    sliding with a shear spring Ks capped at mu*Kn*delta (Li et al. 2018,
-   particle-wall contact).  Optionally the wall moves at constant speed.
+   particle-wall contact).  Optionally the wall moves at constant speed,
+   follows an equal-style variable (e.g. the papers' stepwise loading) or
+   holds a normal stress (servo).
 ------------------------------------------------------------------------- */
 
 #include "fix_lattice_wall.h"
@@ -14,7 +16,9 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "input.h"
 #include "update.h"
+#include "variable.h"
 
 #include <cmath>
 #include <cstring>
@@ -25,7 +29,7 @@ using namespace FixConst;
 /* ---------------------------------------------------------------------- */
 
 FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
-    FixLatticeAtomHistory(lmp, narg, arg), vel(0.0), servo(0), servo_force(0.0), servo_gain(0.5),
+    FixLatticeAtomHistory(lmp, narg, arg), pos_var(-1), vel(0.0), servo(0), servo_force(0.0), servo_gain(0.5),
     history_ready(0),
     wall_energy(0.0), force_flag(0)
 {
@@ -45,7 +49,13 @@ FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "fix lattice/wall face {} is not allowed in a 2d simulation", face);
   inward = utils::strmatch(face, "lo$") ? 1 : -1;
 
-  pos0 = utils::numeric(FLERR, arg[4], false, lmp);
+  // a v_name position follows an equal-style variable, re-evaluated every step
+  if (utils::strmatch(arg[4], "^v_")) {
+    pos_var_name = arg[4] + 2;
+    pos0 = 0.0;
+  } else {
+    pos0 = utils::numeric(FLERR, arg[4], false, lmp);
+  }
   kn = utils::numeric(FLERR, arg[5], false, lmp);
   ks = utils::numeric(FLERR, arg[6], false, lmp);
   mu = utils::numeric(FLERR, arg[7], false, lmp);
@@ -87,6 +97,10 @@ FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
   if (servo && vel != 0.0)
     error->all(FLERR, "fix lattice/wall: vel and servo exclude each other (a servo wall sets "
                "its own speed)");
+  if (!pos_var_name.empty() && (servo || vel != 0.0))
+    error->all(FLERR, "fix lattice/wall: a variable position v_{} excludes vel and servo (the "
+               "variable alone sets where the wall is)", pos_var_name);
+  if (!pos_var_name.empty()) find_position_variable();
 
   t0 = current_time();
 
@@ -129,7 +143,29 @@ double FixLatticeWall::current_time() const
 
 double FixLatticeWall::position() const
 {
+  if (pos_var >= 0) return input->variable->compute_equal(pos_var);
   return pos0 + vel * (current_time() - t0);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeWall::find_position_variable()
+{
+  pos_var = input->variable->find(pos_var_name.c_str());
+  if (pos_var < 0)
+    error->all(FLERR, "fix lattice/wall position variable {} does not exist: define it with "
+               "variable {} equal ... before the fix", pos_var_name, pos_var_name);
+  if (!input->variable->equalstyle(pos_var))
+    error->all(FLERR, "fix lattice/wall position variable {} is not equal-style: the wall "
+               "needs one number per step", pos_var_name);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeWall::init()
+{
+  // variables may have been redefined since the fix was created
+  if (!pos_var_name.empty()) find_position_variable();
 }
 
 /* ---------------------------------------------------------------------- */

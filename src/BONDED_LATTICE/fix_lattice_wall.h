@@ -15,6 +15,8 @@ FixStyle(lattice/wall,FixLatticeWall);
 
 #include "fix_lattice_atom_history.h"
 
+#include <string>
+
 namespace LAMMPS_NS {
 
 class FixLatticeWall : public FixLatticeAtomHistory {
@@ -22,6 +24,7 @@ class FixLatticeWall : public FixLatticeAtomHistory {
   FixLatticeWall(class LAMMPS *, int, char **);
   ~FixLatticeWall() override;
   int setmask() override;
+  void init() override;
   void setup(int) override;
   void min_setup(int) override;
   void post_force(int) override;
@@ -38,6 +41,8 @@ class FixLatticeWall : public FixLatticeAtomHistory {
  protected:
   int dim;          // 0, 1, 2 for x, y, z
   int inward;       // +1 for a lo face (particles above it), -1 for a hi face
+  std::string pos_var_name;    // equal-style variable giving the position, or empty
+  int pos_var;                 // its index, -1 for none
   double pos0;      // position at time t0
   double t0;        // simulation time at which the wall was at pos0
   double vel;       // speed along +axis
@@ -56,6 +61,7 @@ class FixLatticeWall : public FixLatticeAtomHistory {
   double total[5];
 
   double current_time() const;
+  void find_position_variable();
   void apply_forces(bool servo_step);
 };
 
