@@ -16,6 +16,7 @@ start of the curve.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -164,3 +165,36 @@ def coulomb_envelope(sigma3: np.ndarray, sigma1: np.ndarray) -> tuple[float, flo
     if q <= 1:
         raise ValueError(f"envelope slope q = {q:.4g} <= 1: no internal friction can be fitted")
     return float(cu), float((q - 1) / (2 * np.sqrt(q)))
+
+
+def elastic_from_dump(dump: str | Path, thermo: Thermo, test: str, dim: int,
+                      height_fraction: float = 0.5) -> tuple[float, float]:
+    """E and nu from a trajectory dump (read with MDAnalysis) and the platen stress.
+
+    An independent check of :func:`measure`: the strains are least-squares fits of
+    the displacements of the middle ``height_fraction`` of the block in every dump
+    frame (:func:`bonded_lattice.dumps.strains_from_dump`), the stress is the
+    thermo row of the same step.  Frames beyond the elastic window are left out.
+    2D values are converted to the plane-strain convention like :func:`measure`.
+    """
+    from .dumps import strains_from_dump
+
+    strains = strains_from_dump(dump, dim, height_fraction)
+    steps = np.asarray(thermo["Step"]).astype(np.int64)
+    row = {int(s): i for i, s in enumerate(steps)}
+    keep = [k for k, s in enumerate(strains["step"]) if int(s) in row]
+    if len(keep) < 3:
+        raise ValueError(f"{dump}: fewer than 3 dump frames on thermo steps; dump every "
+                         "multiple of the thermo interval")
+    idx = np.array([row[int(strains["step"][k])] for k in keep])
+    stress = np.asarray(thermo["v_stress"])[idx]
+    if test == "confined":
+        stress = stress - thermo["v_stress"][0]
+    axial = strains["axial"][keep]
+    lateral = strains["lateral"][keep]
+    window = ELASTIC_WINDOW if test == "elastic" else STRENGTH_WINDOW
+    E2 = youngs_modulus(axial, stress, window)
+    nu = poisson_ratio(axial, lateral, stress, window)
+    if dim == 2:
+        return plane_strain_from_in_plane(E2, nu)
+    return E2, nu

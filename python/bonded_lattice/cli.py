@@ -5,6 +5,7 @@
     bonded-lattice generate --rock quartz --dim 2 --test tension --n 30 --out tension2d
     bonded-lattice run --rock quartz --dim 2 --test compression --n 30 --np 2 --out run2d
     bonded-lattice calibrate --rock quartz --dim 2 --n 15 --out cal2d
+    bonded-lattice validate [--slow]      # rewrites docs/validation.md
 """
 
 from __future__ import annotations
@@ -102,6 +103,15 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
     return 0 if result.converged else 1
 
 
+def cmd_validate(args: argparse.Namespace) -> int:
+    from .validation import validate
+
+    doc = validate(args.out, args.doc, np_=args.np, slow=args.slow, reuse=args.reuse,
+                   progress=not args.quiet)
+    print(f"wrote {doc}")
+    return 0
+
+
 def cmd_info(args: argparse.Namespace) -> int:
     from .plugin import plugin_path
 
@@ -191,6 +201,18 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--max-runs", type=int, default=5, help="test runs per stage at most")
     p.add_argument("--quiet", action="store_true", help="no progress output")
     p.set_defaults(func=cmd_calibrate)
+
+    p = sub.add_parser("validate", help="reproduce the papers' tests and write "
+                       "docs/validation.md")
+    p.add_argument("--out", default="validation-runs", help="folder for the runs")
+    p.add_argument("--doc", default="docs/validation.md", help="the document to write")
+    p.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
+    p.add_argument("--slow", action="store_true",
+                   help="also the largest sizes and the papers' schedule (about an hour)")
+    p.add_argument("--reuse", action="store_true",
+                   help="keep runs whose summary.json exists (rewrite the doc only)")
+    p.add_argument("--quiet", action="store_true", help="no progress output")
+    p.set_defaults(func=cmd_validate)
 
     p = sub.add_parser("info", help="package version and plugin location")
     p.set_defaults(func=cmd_info)

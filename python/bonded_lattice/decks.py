@@ -282,7 +282,7 @@ variable        stress equal 0.5*(f_bottom[{k}]-f_top[{k}])/{spec.area:.8g}
 def _output(spec: DeckSpec) -> str:
     dump = ""
     if spec.dump_every > 0:
-        dump = f"""dump            particles all custom {spec.dump_every} dump.lammpstrj id type x y z c_nbonds
+        dump = f"""dump            particles all custom {spec.dump_every} dump.lammpstrj id type x y z c_nbonds c_ntension c_nshear
 dump_modify     particles sort id format float %.17g
 """
     halt = ""
@@ -297,6 +297,8 @@ fix             stop all halt {spec.thermo_every} v_failed > 0.5 error continue
 # ---- output ----
 compute         bonds all lattice/bonds
 compute         nbonds all lattice/bonds
+compute         ntension all lattice/bonds peratom tension
+compute         nshear all lattice/bonds peratom shear
 thermo_style    custom step time v_strain v_lateral v_gauge v_stress c_bonds[1] c_bonds[2] c_bonds[3] c_bonds[4] ke
 thermo_modify   norm no flush yes
 thermo          {spec.thermo_every}
@@ -304,9 +306,9 @@ timestep        {spec.dt:.6g}
 # run 0 makes the bonds, so the first dump shows them
 run             0
 # full precision: displacements of 1e-7 m vanish in the default %g format
-write_dump      all custom dump.initial id type x y z c_nbonds modify sort id format float %.17g
+write_dump      all custom dump.initial id type x y z c_nbonds c_ntension c_nshear modify sort id format float %.17g
 {dump}{halt}run             {spec.steps}
-write_dump      all custom dump.final id type x y z c_nbonds modify sort id format float %.17g
+write_dump      all custom dump.final id type x y z c_nbonds c_ntension c_nshear modify sort id format float %.17g
 """
 
 

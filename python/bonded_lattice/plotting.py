@@ -55,24 +55,92 @@ def read_dump(path: str | Path) -> tuple[list[str], np.ndarray]:
 
 def broken_bond_map_png(path: str | Path, initial_dump: str | Path, final_dump: str | Path,
                         dim: int, title: str = "") -> int:
-    """Particles coloured by how many of their bonds broke; returns that total / 2."""
+    """Particles coloured by their broken bonds; returns the number of broken bonds.
+
+    With the decks' ``c_ntension`` and ``c_nshear`` columns, two panels: bonds
+    broken in tension (the micro-cracks across the load) and in shear (the
+    shear zones); otherwise one panel of all bonds lost since the initial dump.
+    In 3D the particles are projected on the x-z plane.
+    """
     plt = _pyplot()
     names, first = read_dump(initial_dump)
     _, last = read_dump(final_dump)
-    col = names.index("c_nbonds")
-    lost = first[:, col] - last[:, col]
     x, y = last[:, names.index("x")], last[:, names.index("y" if dim == 2 else "z")]
-    fig, ax = plt.subplots(figsize=(5.2, 5))
-    intact = lost == 0
-    ax.scatter(x[intact] * 1e3, y[intact] * 1e3, s=4, c="0.8", lw=0)
-    sc = ax.scatter(x[~intact] * 1e3, y[~intact] * 1e3, s=8, c=lost[~intact], cmap="inferno_r",
-                    vmin=0, vmax=max(1.0, float(lost.max())), lw=0)
-    fig.colorbar(sc, ax=ax, label="broken bonds per particle")
-    ax.set_aspect("equal")
-    ax.set_xlabel("x (mm)")
-    ax.set_ylabel(("y" if dim == 2 else "z") + " (mm)")
-    ax.set_title(title)
+    if "c_ntension" in names and "c_nshear" in names:
+        panels = [("broken in tension", last[:, names.index("c_ntension")]),
+                  ("broken in shear", last[:, names.index("c_nshear")])]
+    else:
+        col = names.index("c_nbonds")
+        panels = [("broken", first[:, col] - last[:, col])]
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 5), squeeze=False)
+    total = 0.0
+    for ax, (label, lost) in zip(axes[0], panels):
+        total += lost.sum()
+        intact = lost == 0
+        order = np.argsort(lost[~intact])   # most damaged drawn on top (3D projection)
+        ax.scatter(x[intact] * 1e3, y[intact] * 1e3, s=4, c="0.85", lw=0)
+        sc = ax.scatter(x[~intact][order] * 1e3, y[~intact][order] * 1e3, s=8,
+                        c=lost[~intact][order], cmap="inferno_r", vmin=0,
+                        vmax=max(1.0, float(lost.max())), lw=0)
+        fig.colorbar(sc, ax=ax, label=f"bonds {label} per particle")
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (mm)")
+        ax.set_ylabel(("y" if dim == 2 else "z") + " (mm)")
+        ax.set_title(f"{title}\n{label}" if title else label, fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=130)
     plt.close(fig)
-    return int(round(lost.sum() / 2))
+    return int(round(total / 2))
+
+
+def convergence_png(path: str | Path, dim: int, series: list[dict],
+                    paper_multi: dict[str, float] | None = None) -> None:
+    """Errors of E, nu, Tu and Cu against particle count (the papers' Figs. 6/8 and 4).
+
+    series: rows ``{"n": ..., "elastic": summary, "tension": summary,
+    "compression": summary}`` of :func:`bonded_lattice.experiment.run_test`;
+    paper_multi: the papers' average multi-unit errors of Tu and Cu, drawn as lines.
+    """
+    plt = _pyplot()
+    count = np.array([row["elastic"]["particles"] for row in series])
+    panels = [("E", "elastic", "Young's modulus E"), ("nu", "elastic", "Poisson's ratio nu"),
+              ("Tu", "tension", "tensile strength Tu"), ("Cu", "compression",
+                                                        "compressive strength Cu")]
+    fig, axes = plt.subplots(2, 2, figsize=(8.5, 6.5))
+    for ax, (key, test, label) in zip(axes.ravel(), panels):
+        err = np.array([100 * row[test]["relative_error"][key] for row in series])
+        ax.semilogx(count, err, "o-", label="bonded-lattice")
+        if key == "nu":
+            nu_all = np.array([100 * (row["elastic"]["nu_all_particles"] /
+                                      row["elastic"]["target"]["nu"] - 1) for row in series])
+            ax.semilogx(count, nu_all, "s--", color="0.5", ms=4, label="all-particle fit")
+        if paper_multi and key in paper_multi:
+            ax.axhline(100 * paper_multi[key], color="r", ls=":",
+                       label=f"paper, multi-unit mean {100 * paper_multi[key]:+.1f}%")
+        ax.axhline(0.0, color="k", lw=0.8)
+        ax.set_title(label, fontsize=10)
+        ax.set_xlabel("particles" if dim == 2 else "elements")
+        ax.set_ylabel("error against the formula (%)")
+        ax.legend(fontsize=7, loc="best")
+    fig.suptitle(f"{dim}D quartz: convergence with model size", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def strain_magnitude_png(path: str | Path, results: dict[int, list[dict]],
+                         strains: list[float]) -> None:
+    """Errors of E and nu against the strain magnitude of the elastic test, 2D and 3D."""
+    plt = _pyplot()
+    fig, axes = plt.subplots(1, 2, figsize=(8.5, 3.6))
+    for ax, key in zip(axes, ("E", "nu")):
+        for dim, runs in sorted(results.items()):
+            err = [100 * r["relative_error"][key] for r in runs]
+            ax.semilogx(strains, err, "o-", label=f"{dim}D, {runs[0]['particles']} particles")
+        ax.axhline(0.0, color="k", lw=0.8)
+        ax.set_xlabel("compressive strain magnitude")
+        ax.set_ylabel(f"{key} error (%)")
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)

@@ -6,7 +6,9 @@
    [3] bonds broken in shear, [4] active contacts (broken bonds and unbonded
    pairs that overlap).  Each bond is counted once, by its lower-tag atom,
    if that atom is in the compute's group.
-   per-atom vector: intact bonds of each atom (for dumps and OVITO).
+   per-atom vector: intact bonds of each atom (for dumps and OVITO), or with
+   "peratom tension|shear" its bonds broken in that mode (crack and shear-zone
+   maps).
 ------------------------------------------------------------------------- */
 
 #include "compute_lattice_bonds.h"
@@ -21,15 +23,31 @@
 #include "update.h"
 
 #include <cstring>
+#include <string>
 
 using namespace LAMMPS_NS;
 
 /* ---------------------------------------------------------------------- */
 
 ComputeLatticeBonds::ComputeLatticeBonds(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), pair(nullptr), nmax(0), intact_per_atom(nullptr)
+    Compute(lmp, narg, arg), pair(nullptr), peratom_state(LB_INTACT), nmax(0),
+    intact_per_atom(nullptr)
 {
-  if (narg != 3) error->all(FLERR, "Illegal compute lattice/bonds command: it takes no arguments");
+  if (narg != 3 && narg != 5)
+    error->all(FLERR, "Illegal compute lattice/bonds command: expected compute ID group "
+               "lattice/bonds [peratom intact|tension|shear]");
+  if (narg == 5) {
+    if (strcmp(arg[3], "peratom") != 0)
+      error->all(FLERR, "Unknown compute lattice/bonds keyword {}: the only keyword is peratom",
+                 arg[3]);
+    const std::string what = arg[4];
+    if (what == "intact") peratom_state = LB_INTACT;
+    else if (what == "tension") peratom_state = LB_BROKEN_TENSION;
+    else if (what == "shear") peratom_state = LB_BROKEN_SHEAR;
+    else
+      error->all(FLERR, "compute lattice/bonds peratom {} is not valid: use intact, tension or "
+                 "shear", what);
+  }
   vector_flag = 1;
   size_vector = 4;
   extvector = 1;
@@ -111,7 +129,7 @@ void ComputeLatticeBonds::compute_peratom()
     for (int i = 0; i < atom->nlocal; i++) {
       const LatticeBondRecord *r = store->records(i);
       for (int s = 0; s < store->nrec[i]; s++) {
-        if (r[s].state != LB_INTACT) continue;
+        if (r[s].state != peratom_state) continue;
         intact_per_atom[i] += 1.0;
         const int j = idx[(bigint) i * maxslot + s];
         if (j >= 0) intact_per_atom[j] += 1.0;

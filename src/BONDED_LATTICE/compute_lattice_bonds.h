@@ -30,8 +30,9 @@ class ComputeLatticeBonds : public Compute {
  private:
   class PairLatticeBond *pair;
   double counts[4];
+  int peratom_state;          // bond state counted per atom (intact by default)
   int nmax;
-  double *intact_per_atom;
+  double *intact_per_atom;    // per-atom counts of bonds in peratom_state
 };
 
 }    // namespace LAMMPS_NS
