@@ -61,3 +61,15 @@ def test_calibration_converges_on_a_small_lattice(tmp_path):
     saved = json.loads((tmp_path / "calibration.json").read_text())
     assert saved["bond"]["Fs0"] == pytest.approx(result.bond.Fs0, rel=1e-15)
     assert "pair_coeff" in calibration_table(result)
+
+
+def test_cli_calibrate_prints_the_corrections(tmp_path, capsys):
+    from bonded_lattice.cli import main
+
+    code = main(["calibrate", "--dim", "2", "--n", "4", "--np", "1", "--quiet",
+                 "--out", str(tmp_path)])
+    out = capsys.readouterr().out
+    # exit status 0 only when every property is within the tolerance
+    assert code == 0, out
+    assert "converged" in out and "Cu (MPa)" in out and "pair_coeff" in out
+    assert (tmp_path / "calibration.json").exists()

@@ -162,6 +162,12 @@ def _common(p: argparse.ArgumentParser, test: bool = True, choose_test: bool = T
         p.add_argument("--out", default="bonded-lattice-run", help="output folder")
 
 
+def _running(p: argparse.ArgumentParser) -> None:
+    """Options of the subcommands that run LAMMPS."""
+    p.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
+    p.add_argument("--quiet", action="store_true", help="no progress output")
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="bonded-lattice",
                                      description="Bonded close-packed lattice DEM for LAMMPS.")
@@ -180,38 +186,34 @@ def main(argv: list[str] | None = None) -> int:
 
     p = sub.add_parser("run", help="generate, run, measure and plot one test")
     _common(p)
-    p.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    _running(p)
     p.set_defaults(func=cmd_run)
 
     p = sub.add_parser("envelope", help="confined tests at several pressures: Cu and mu_i")
     _common(p)
     p.add_argument("--pressures", type=float, nargs="+", default=[0.0, 10e6, 20e6],
                    help="confining stresses in Pa (default 0 10e6 20e6)")
-    p.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    _running(p)
     p.set_defaults(func=cmd_envelope)
 
     p = sub.add_parser("calibrate", help="adjust the bond parameters until this lattice's "
                        "E, nu, Tu and Cu match the rock")
     _common(p, choose_test=False)
-    p.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
+    _running(p)
     p.add_argument("--tol", type=float, default=0.01,
                    help="relative tolerance per property (default 0.01)")
     p.add_argument("--max-runs", type=int, default=5, help="test runs per stage at most")
-    p.add_argument("--quiet", action="store_true", help="no progress output")
     p.set_defaults(func=cmd_calibrate)
 
     p = sub.add_parser("validate", help="reproduce the papers' tests and write "
                        "docs/validation.md")
     p.add_argument("--out", default="validation-runs", help="folder for the runs")
     p.add_argument("--doc", default="docs/validation.md", help="the document to write")
-    p.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
+    _running(p)
     p.add_argument("--slow", action="store_true",
                    help="also the largest sizes and the papers' schedule (about an hour)")
     p.add_argument("--reuse", action="store_true",
                    help="keep runs whose summary.json exists (rewrite the doc only)")
-    p.add_argument("--quiet", action="store_true", help="no progress output")
     p.set_defaults(func=cmd_validate)
 
     p = sub.add_parser("info", help="package version and plugin location")

@@ -145,6 +145,8 @@ def run_deck(deck: str | Path, workdir: str | Path | None = None, np_: int = 1,
         proc.wait()
     bar.close()
     text = "".join(out)
+    if progress and "Fix halt condition" in text:
+        sys.stderr.write("  the block has failed: run stopped (fix halt)\n")
     return RunResult(workdir, proc.returncode, text, time.perf_counter() - start, parse_thermo(text))
 
 
