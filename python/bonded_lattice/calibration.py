@@ -108,10 +108,12 @@ def _check_input(prop: str, value: float, dim: int) -> float:
 
 def calibrate(rock: Rock, dim: int, n: int, out: str | Path, np_: int = 2,
               d: float = 1.0e-3, tol: float = 0.01, max_runs: int = 5,
-              progress: bool = False, **plan_options) -> CalibrationResult:
+              progress: bool = False, orientation: float = 0.0,
+              **plan_options) -> CalibrationResult:
     """Find the inputs of the conversion formulas that give this lattice the rock's properties.
 
-    rock: target properties; dim, n, d: the lattice (as for ``bonded-lattice run``);
+    rock: target properties; dim, n, d, orientation: the lattice (as for
+    ``bonded-lattice run``);
     tol: relative tolerance per property (default 1%, inside the 2% goal);
     max_runs: test runs per stage at most; progress: print one line per run;
     plan_options: loading options of
@@ -136,7 +138,8 @@ def calibrate(rock: Rock, dim: int, n: int, out: str | Path, np_: int = 2,
             bond = rock_to_bond(inputs["E"], inputs["nu"], inputs["Tu"], inputs["Cu"],
                                 inputs["mu_i"], d, dim)
             summary = run_test(rock, dim, stage, n, out / f"{stage}_{k}", np_=np_, d=d,
-                               progress=False, bond=bond, **plan_options)
+                               progress=False, bond=bond, orientation=orientation,
+                               **plan_options)
             particles = summary["particles"]
             got = {p: float(summary["measured"][p]) for p in props}
             measured.update(got)

@@ -51,7 +51,7 @@ def cmd_generate(args: argparse.Namespace) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, args.d, args.dim)
-    lattice = build_lattice(args.dim, args.n, args.d)
+    lattice = build_lattice(args.dim, args.n, args.d, args.orientation)
     plan = plan_test(rock, bond, lattice, args.test, **_plan_options(args))
     write_data(lattice, out / "data.lattice", plan.mass)
     write_deck(deck_spec(plan, args.test, args.dim, bond, args.confining, args.dump_every,
@@ -66,7 +66,7 @@ def cmd_run(args: argparse.Namespace) -> int:
 
     summary = run_test(_rock(args), args.dim, args.test, args.n, args.out, np_=args.np,
                        d=args.d, progress=not args.quiet, dump_every=args.dump_every,
-                       **_plan_options(args))
+                       orientation=args.orientation, **_plan_options(args))
     print(summary_table(summary))
     print(f"results in {args.out}: summary.json, stress_strain.png"
           + (", broken_bonds.png" if args.test != "elastic" else ""))
@@ -82,7 +82,8 @@ def cmd_envelope(args: argparse.Namespace) -> int:
     for p in args.pressures:
         options = {**_plan_options(args), "confining": p}
         summary = run_test(rock, args.dim, "confined", args.n, Path(args.out) / f"confined_{p:g}",
-                           np_=args.np, d=args.d, progress=not args.quiet, **options)
+                           np_=args.np, d=args.d, progress=not args.quiet,
+                           orientation=args.orientation, **options)
         peaks.append(summary["measured"]["sigma1"])
         print(f"sigma3 = {p / 1e6:8.3f} MPa   sigma1 = {peaks[-1] / 1e6:9.3f} MPa "
               f"(Coulomb target {summary['target']['sigma1'] / 1e6:9.3f} MPa)")
@@ -97,6 +98,7 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
 
     result = calibrate(_rock(args), args.dim, args.n, args.out, np_=args.np, d=args.d,
                        tol=args.tol, max_runs=args.max_runs, progress=not args.quiet,
+                       orientation=args.orientation,
                        **{k: v for k, v in _plan_options(args).items() if k != "confining"})
     print(calibration_table(result))
     print(f"details in {Path(args.out) / 'calibration.json'}")
@@ -156,6 +158,9 @@ def _common(p: argparse.ArgumentParser, test: bool = True, choose_test: bool = T
                        help="viscous damping as a multiple of the papers' eta (default 1)")
         p.add_argument("--elastic-strain", type=float, default=1.0e-4,
                        help="axial strain reached by --test elastic (default 1e-4)")
+        p.add_argument("--orientation", type=float, default=0.0,
+                       help="2D: degrees from the x axis to the close-packed rows (default 0, "
+                       "the papers' set-up; 30 puts one bond family along the load)")
         p.add_argument("--dump-every", type=int, default=0,
                        help="write dump.lammpstrj every this many steps (0: only the first "
                        "and last configurations)")

@@ -65,6 +65,7 @@ class DeckSpec:
     relax_steps: int = 0      # stepwise: time steps after each loading step
     gauges: bool = True       # mid-height lateral gauges (False: blocks of 1-2 layers)
     halt_fraction: float = 0.3  # strength tests stop when |stress| < this x peak (0: never)
+    energy: bool = False      # energy budget (compute lattice/energy) in the thermo output
 
     def __post_init__(self) -> None:
         if self.test not in TESTS:
@@ -220,10 +221,11 @@ def _loading(spec: DeckSpec) -> str:
             move_bot = f"variable {_vector(ax, 'v_dbot', 'NULL')} NULL NULL NULL"
         return f"""
 # ---- loading: {title} ----
-# the end layers are held by smooth planes: only their axial motion is
+# the end layers (centres within 0.6 d of the ends: the outermost row, or both
+# staggered rows of a rotated lattice) are held by smooth planes: only their axial motion is
 # prescribed (fix move); sideways they move freely with the block
-region          toplayer block {_slab(ax, f"$(v_hi0-{0.25 * d!r})", "INF")} units box
-region          botlayer block {_slab(ax, "INF", f"$(v_lo0+{0.25 * d!r})")} units box
+region          toplayer block {_slab(ax, f"$(v_hi0-{0.6 * d!r})", "INF")} units box
+region          botlayer block {_slab(ax, "INF", f"$(v_lo0+{0.6 * d!r})")} units box
 group           top region toplayer
 group           bottom region botlayer
 group           inner subtract all top bottom
@@ -293,13 +295,22 @@ fix             peaklog all vector {spec.thermo_every} v_smag
 variable        failed equal v_smag<{spec.halt_fraction:g}*max(f_peaklog)
 fix             stop all halt {spec.thermo_every} v_failed > 0.5 error continue
 """
+    energy = columns = ""
+    if spec.energy:
+        # after the fixes that add forces, as compute lattice/energy requires; the
+        # end layers' prescribed motion does external work in tension
+        work = " work top bottom" if spec.test == "tension" else ""
+        energy = ("# energy budget: elastic, kinetic, gravity, viscous heat, breaking heat (normal,\n"
+                  "# shear), frictional heat, external work, total, balance error\n"
+                  f"compute         energy all lattice/energy{work}\n")
+        columns = " " + " ".join(f"c_energy[{k}]" for k in range(1, 11))
     return f"""
 # ---- output ----
-compute         bonds all lattice/bonds
+{energy}compute         bonds all lattice/bonds
 compute         nbonds all lattice/bonds
 compute         ntension all lattice/bonds peratom tension
 compute         nshear all lattice/bonds peratom shear
-thermo_style    custom step time v_strain v_lateral v_gauge v_stress c_bonds[1] c_bonds[2] c_bonds[3] c_bonds[4] ke
+thermo_style    custom step time v_strain v_lateral v_gauge v_stress c_bonds[1] c_bonds[2] c_bonds[3] c_bonds[4] ke{columns}
 thermo_modify   norm no flush yes
 thermo          {spec.thermo_every}
 timestep        {spec.dt:.6g}

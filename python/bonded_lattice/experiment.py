@@ -43,9 +43,19 @@ class RunPlan:
     thermo_every: int = 1
 
 
-def build_lattice(dim: int, n: int, d: float) -> Lattice:
-    """The papers' blocks: n particles across (2D) or n elements along y (3D)."""
-    return hex_block_2d(n, d) if dim == 2 else close_packed_block_3d(n, d)
+def build_lattice(dim: int, n: int, d: float, orientation: float = 0.0) -> Lattice:
+    """The papers' blocks: n particles across (2D) or n elements along y (3D).
+
+    orientation (2D only): angle in degrees from the x axis to the close-packed rows
+    (0: the papers' set-up, rows perpendicular to the load; 30: one bond family
+    along the load); see :func:`bonded_lattice.lattice.block_2d`.
+    """
+    if dim == 2:
+        return hex_block_2d(n, d, orientation=orientation)
+    if orientation != 0.0:
+        raise ValueError(f"orientation = {orientation} is out of range in 3D: the 3D blocks "
+                         "have their close-packed layers across the load (orientation 0)")
+    return close_packed_block_3d(n, d)
 
 
 # The papers' stepwise schedules for 1 mm particles (REFERENCE.md): displacement of
@@ -89,7 +99,8 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
               crossings: float = 100.0, speed: float | None = None,
               confining: float = 0.0, schedule: str = "constant",
               damping: float = 1.0, elastic_strain: float = 1.0e-4,
-              step_size: float | None = None, relax_steps: int | None = None) -> RunPlan:
+              step_size: float | None = None, relax_steps: int | None = None,
+              dt_scale: float = 1.0) -> RunPlan:
     """Choose time step, damping, loading and run length.
 
     - eta: ``damping`` times the papers' damping (2D sqrt(8 m Kn)/N,
@@ -101,6 +112,7 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
     - schedule ``paper``: the papers' time step, platen displacement per loading
       step (scaled with d / 1 mm) and relaxation steps after each
       (PAPER_SCHEDULES), unless ``step_size`` or ``relax_steps`` are given;
+    - dt_scale: multiplies the time step of either schedule (convergence studies);
     - steps: RUN_MARGIN times the time to reach the failure strain Cu/E or Tu/E
       (or ``elastic_strain``), counting the platens' spring overlap; strength
       decks stop by themselves once the block has failed (fix halt), and a
@@ -112,6 +124,8 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
     if not damping >= 0:
         raise ValueError(f"damping = {damping} is out of range: need damping >= 0 "
                          "(a multiple of the papers' eta)")
+    if not 0 < dt_scale <= 2:
+        raise ValueError(f"dt_scale = {dt_scale} is out of range: need 0 < dt_scale <= 2")
     if not 0 < elastic_strain < 0.01:
         raise ValueError(f"elastic_strain = {elastic_strain} is out of range: need "
                          "0 < elastic_strain < 0.01 (small strain)")
@@ -133,7 +147,7 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
     margin = RUN_MARGIN[test]
     if schedule == "paper":
         paper = PAPER_SCHEDULES[dim]
-        dt = paper["dt_fraction"] * math.sqrt(mass / bond.Kn)
+        dt = dt_scale * paper["dt_fraction"] * math.sqrt(mass / bond.Kn)
         step_size = step_size if step_size is not None else paper["step_size"][test] * d / 1.0e-3
         relax_steps = relax_steps if relax_steps is not None else paper["relax_steps"]
         if not step_size > 0 or relax_steps < 1:
@@ -147,7 +161,7 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
         return RunPlan(n=n_across, particles=lattice.n, d=d, mass=mass, dt=dt, eta=eta,
                        speed=speed, steps=steps, area=area, schedule="stepwise",
                        step_size=step_size, relax_steps=relax_steps, thermo_every=thermo_every)
-    dt = DEFAULT_DT_FRACTION * math.sqrt(mass / bond.Kn)
+    dt = dt_scale * DEFAULT_DT_FRACTION * math.sqrt(mass / bond.Kn)
     wave_speed = math.sqrt(rock.E / rock.rho)
     load_time = crossings * height / wave_speed
     if speed is None:
@@ -174,9 +188,10 @@ def has_mid_height(lattice: Lattice) -> bool:
 
 
 def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
-              confining: float = 0.0, dump_every: int = 0, gauges: bool = True) -> DeckSpec:
+              confining: float = 0.0, dump_every: int = 0, gauges: bool = True,
+              energy: bool = False) -> DeckSpec:
     """The deck of a planned run (reads ``data.lattice`` beside it)."""
-    return DeckSpec(gauges=gauges, test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
+    return DeckSpec(gauges=gauges, energy=energy, test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
                     area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps,
                     dt=plan.dt, thermo_every=plan.thermo_every, confining=confining,
                     schedule=plan.schedule, step_size=plan.step_size,
@@ -191,7 +206,8 @@ def lattice_n_across(lattice: Lattice) -> int:
 
 def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int = 2,
              d: float = 1.0e-3, progress: bool = True, bond: BondParameters | None = None,
-             dump_every: int = 0, **plan_options) -> dict:
+             dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
+             **plan_options) -> dict:
     """Run one test end to end and return the summary (also written to summary.json).
 
     bond: bond parameters to use instead of the rock's converted ones (calibration);
@@ -204,14 +220,14 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
     confining = plan_options.get("confining", 0.0)
     if bond is None:
         bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, d, dim)
-    lattice = build_lattice(dim, n, d)
+    lattice = build_lattice(dim, n, d, orientation)
     plan = plan_test(rock, bond, lattice, test, **plan_options)
     write_data(lattice, out / "data.lattice", plan.mass)
     if dump_every > 0:   # frames on thermo rows, so each frame has its stress
         dump_every = plan.thermo_every * max(1, round(dump_every / plan.thermo_every))
     deck = out / f"in.{test}"
-    write_deck(deck_spec(plan, test, dim, bond, confining, dump_every, has_mid_height(lattice)),
-               deck)
+    write_deck(deck_spec(plan, test, dim, bond, confining, dump_every, has_mid_height(lattice),
+                         energy), deck)
     result: RunResult = run_deck(deck, out, np_=np_, total_steps=plan.steps, progress=progress)
     if result.returncode != 0:
         raise RuntimeError(f"LAMMPS failed in {out}: {result.error}")
@@ -254,6 +270,7 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
         "particles": lattice.n,
         "n": n,
         "confining_Pa": confining,
+        "orientation_deg": orientation,
         "ranks": np_,
         "plan": asdict(plan),
         "bond": asdict(bond),
@@ -264,10 +281,33 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
         "first_break_stress": got.first_break,
         "nu_all_particles": got.nu_all,
         "measured_from_dump": from_dump,
+        "energy": energy_summary(thermo) if energy else None,
         "wall_time_s": result.wall_time,
     }
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
     return summary
+
+
+ENERGY_NAMES = ("elastic", "kinetic", "gravitational", "viscous_heat", "breaking_heat_normal",
+                "breaking_heat_shear", "frictional_heat", "external_work", "total", "balance_error")
+
+
+def energy_summary(thermo: dict) -> dict:
+    """Final energy budget (J; per metre of thickness in 2D) and the balance quality.
+
+    max_balance_ratio: the largest |balance error| / external work over the output
+    rows once the work exceeds 1% of its final value (before that the ratio of two
+    small numbers says little: the first rows carry the start-up transient).
+    """
+    final = {name: float(thermo[f"c_energy[{k + 1}]"][-1]) for k, name in enumerate(ENERGY_NAMES)}
+    work = np.abs(thermo["c_energy[8]"])
+    balance = np.abs(thermo["c_energy[10]"])
+    rows = work > 0.01 * work[-1]
+    final["max_balance_ratio"] = float((balance[rows] / work[rows]).max()) if rows.any() else 0.0
+    kinetic = thermo["c_energy[2]"]
+    final["peak_kinetic_fraction"] = float((kinetic / np.maximum(work, 1e-300))[rows].max()) \
+        if rows.any() else 0.0
+    return final
 
 
 def summary_table(summary: dict) -> str:

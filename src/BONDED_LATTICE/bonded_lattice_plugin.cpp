@@ -6,6 +6,8 @@
 ------------------------------------------------------------------------- */
 
 #include "compute_lattice_bonds.h"
+#include "compute_lattice_energy.h"
+#include "fix_lattice_energy.h"
 #include "fix_lattice_bond_store.h"
 #include "fix_lattice_viscous.h"
 #include "fix_lattice_wall.h"
@@ -48,7 +50,7 @@ class CommandBondedLatticeInfo : public Command {
     if (comm->me == 0)
       utils::logmesg(lmp,
                      "BONDED_LATTICE {} (built for LAMMPS {}): pair_style lattice/bond, fix "
-                     "lattice/viscous, fix lattice/wall, compute lattice/bonds\n",
+                     "lattice/viscous, fix lattice/wall, compute lattice/bonds, compute lattice/energy\n",
                      BONDED_LATTICE_VERSION, BONDED_LATTICE_LAMMPS_VERSION);
   }
 };
@@ -58,6 +60,8 @@ Fix *fix_store_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLattic
 Fix *fix_viscous_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeViscous(lmp, narg, arg); }
 Fix *fix_wall_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeWall(lmp, narg, arg); }
 Compute *compute_bonds_creator(LAMMPS *lmp, int narg, char **arg) { return new ComputeLatticeBonds(lmp, narg, arg); }
+Compute *compute_energy_creator(LAMMPS *lmp, int narg, char **arg) { return new ComputeLatticeEnergy(lmp, narg, arg); }
+Fix *fix_energy_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeEnergy(lmp, narg, arg); }
 Command *info_creator(LAMMPS *lmp) { return new CommandBondedLatticeInfo(lmp); }
 
 }    // namespace
@@ -92,10 +96,19 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_wall_creator;
   (*register_plugin)(&plugin, lmp);
 
+  plugin.name = "LATTICE/ENERGY";
+  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " internal energy accounting";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_energy_creator;
+  (*register_plugin)(&plugin, lmp);
+
   plugin.style = "compute";
   plugin.name = "lattice/bonds";
   plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " compute lattice/bonds";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &compute_bonds_creator;
+  (*register_plugin)(&plugin, lmp);
+  plugin.name = "lattice/energy";
+  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " compute lattice/energy";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &compute_energy_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "command";

@@ -15,6 +15,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
+#include "update.h"
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -22,7 +23,7 @@ using namespace FixConst;
 /* ---------------------------------------------------------------------- */
 
 FixLatticeViscous::FixLatticeViscous(LAMMPS *lmp, int narg, char **arg) :
-    FixLatticeAtomHistory(lmp, narg, arg), fdamp_valid(0)
+    FixLatticeAtomHistory(lmp, narg, arg), tally_flag(0), heat(0.0), fdamp_valid(0)
 {
   if (narg != 4)
     error->all(FLERR, "Illegal fix lattice/viscous command: expected fix ID group lattice/viscous eta");
@@ -47,7 +48,7 @@ int FixLatticeViscous::setmask()
 void FixLatticeViscous::setup(int vflag)
 {
   if (!fdamp_valid) {
-    post_force(vflag);
+    damp(false);
     return;
   }
   double **f = atom->f;
@@ -64,10 +65,32 @@ void FixLatticeViscous::setup(int vflag)
 
 void FixLatticeViscous::post_force(int /*vflag*/)
 {
+  damp(true);
+}
+
+/* ----------------------------------------------------------------------
+   F = -eta v with the velocity at force time, v(t - dt/2) = the step's
+   displacement / dt; the heat of a step is minus the work of the damping
+   force over it, trapezoidal in the old and new force (as velocity Verlet
+   conserves energy), counted only for a step actually taken
+------------------------------------------------------------------------- */
+
+void FixLatticeViscous::damp(bool step_taken)
+{
   double **v = atom->v;
   double **f = atom->f;
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
+  if (tally_flag && step_taken) {
+    double work = 0.0;
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit) {
+        const double fx = -eta * v[i][0], fy = -eta * v[i][1], fz = -eta * v[i][2];
+        work += (hist[i][0] + fx) * v[i][0] + (hist[i][1] + fy) * v[i][1] +
+            (hist[i][2] + fz) * v[i][2];
+      }
+    heat -= 0.5 * update->dt * work;
+  }
   for (int i = 0; i < nlocal; i++)
     if (mask[i] & groupbit) {
       hist[i][0] = -eta * v[i][0];

@@ -27,10 +27,18 @@ class FixLatticeViscous : public FixLatticeAtomHistory {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
+  // energy accounting (compute lattice/energy): heat dissipated on this rank
+  double heat_tally() const { return heat; }
+  void enable_tallies(int flag) { tally_flag = flag; }
+
  protected:
   double eta;         // damping coefficient, force/velocity
+  int tally_flag;
+  double heat;        // work of the damping forces, trapezoidal rule, sign flipped
   // hist[i][0..2]: damping force of the last step, reapplied by setup()
   int fdamp_valid;    // 1 once fdamp holds a step's force
+
+  void damp(bool step_taken);
 };
 
 }    // namespace LAMMPS_NS

@@ -31,7 +31,8 @@ using namespace FixConst;
 FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
     FixLatticeAtomHistory(lmp, narg, arg), pos_var(-1), vel(0.0), servo(0), servo_force(0.0), servo_gain(0.5),
     history_ready(0),
-    wall_energy(0.0), force_flag(0)
+    wall_energy(0.0), force_flag(0), tally_flag(0), work(0.0), heat(0.0), fnormal_prev(0.0),
+    wall_prev(0.0)
 {
   if (narg < 8)
     error->all(FLERR, "Illegal fix lattice/wall command: expected fix ID group lattice/wall "
@@ -202,13 +203,24 @@ void FixLatticeWall::post_force(int /*vflag*/)
   apply_forces(true);
 }
 
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeWall::enable_tallies(int flag)
+{
+  tally_flag = flag;
+}
+
 /* ----------------------------------------------------------------------
    wall forces at the current wall position; a servo wall then moves for
    the next step by gain * (force error) / (Kn * contacts), the usual DEM
-   servo (a full correction of a stiffness Kn per touching particle)
+   servo (a full correction of a stiffness Kn per touching particle).
+   With tallies on, a step taken adds the wall's work on the particles,
+   trapezoidal in this rank's old and new normal force (a sum over atoms, so
+   atoms changing rank do not matter), and the heat of the shear springs as
+   in pair lattice/bond: Ks/2 [(s1 + s2).ds - |s2|^2 + |s1|^2].
 ------------------------------------------------------------------------- */
 
-void FixLatticeWall::apply_forces(bool servo_step)
+void FixLatticeWall::apply_forces(bool step_taken)
 {
   double **x = atom->x;
   double **f = atom->f;
@@ -220,6 +232,8 @@ void FixLatticeWall::apply_forces(bool servo_step)
   force_flag = 0;
   std::memset(wall_force, 0, sizeof(wall_force));
   wall_energy = 0.0;
+  const bool tally = tally_flag && step_taken;
+  double q = 0.0;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -237,6 +251,8 @@ void FixLatticeWall::apply_forces(bool servo_step)
     const double h = inward * (x[i][dim] - wall);    // centre's distance inside the wall
     const double delta = radius[i] - h;
     if (delta <= 0.0) {
+      if (tally && ks > 0.0)   // a spring left behind by a lost contact lets go
+        q += 0.5 * ks * (s[0] * (s[0] + inc[0]) + s[1] * (s[1] + inc[1]) + s[2] * (s[2] + inc[2]));
       s[0] = s[1] = s[2] = 0.0;
       continue;
     }
@@ -245,6 +261,7 @@ void FixLatticeWall::apply_forces(bool servo_step)
     double fs[3] = {0.0, 0.0, 0.0};
     double es = 0.0;
     if (ks > 0.0) {
+      const double s1[3] = {s[0], s[1], s[2]};
       for (int k = 0; k < 3; k++) s[k] += inc[k];
       s[dim] = 0.0;
       const double s2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
@@ -252,6 +269,8 @@ void FixLatticeWall::apply_forces(bool servo_step)
       if (ks * ks * s2 > limit * limit) {
         const double scale = limit / (ks * sqrt(s2));
         for (int k = 0; k < 3; k++) s[k] *= scale;
+        if (tally)
+          for (int k = 0; k < 3; k++) q += 0.5 * ks * ((s1[k] + s[k]) * inc[k] - s[k] * s[k] + s1[k] * s1[k]);
       }
       for (int k = 0; k < 3; k++) fs[k] = -ks * s[k];
       es = 0.5 * ks * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
@@ -265,7 +284,15 @@ void FixLatticeWall::apply_forces(bool servo_step)
     wall_energy += 0.5 * kn * delta * delta + es;
   }
 
-  if (servo && servo_step) {
+  if (tally) {
+    const double fnormal = -wall_force[dim];    // this rank's force on the particles
+    work += 0.5 * (fnormal_prev + fnormal) * (wall - wall_prev);
+    heat += q;
+  }
+  fnormal_prev = -wall_force[dim];
+  wall_prev = wall;
+
+  if (servo && step_taken) {
     compute_scalar();    // global force and contacts of this step
     const double pushed = -inward * total[dim];    // compression positive
     const double contacts = MAX(1.0, total[3]);

@@ -38,6 +38,12 @@ class FixLatticeWall : public FixLatticeAtomHistory {
 
   double position() const;    // wall coordinate at the current step
 
+  // energy accounting (compute lattice/energy), on this rank: work done by the
+  // wall on the particles (it moves) and heat of its sliding contacts
+  double work_tally() const { return work; }
+  double heat_tally() const { return heat; }
+  void enable_tallies(int flag);
+
  protected:
   int dim;          // 0, 1, 2 for x, y, z
   int inward;       // +1 for a lo face (particles above it), -1 for a hi face
@@ -60,9 +66,14 @@ class FixLatticeWall : public FixLatticeAtomHistory {
   int force_flag;
   double total[5];
 
+  int tally_flag;
+  double work, heat;
+  double fnormal_prev;    // this rank's normal force on the particles at the last step
+  double wall_prev;       // the wall's position at the last step
+
   double current_time() const;
   void find_position_variable();
-  void apply_forces(bool servo_step);
+  void apply_forces(bool step_taken);
 };
 
 }    // namespace LAMMPS_NS

@@ -39,8 +39,9 @@ static constexpr int DEFAULT_MAXSLOT = 16;
 PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
     Pair(lmp), params(nullptr), bondable(nullptr), coeff_set(nullptr),
     tolerance(DEFAULT_TOLERANCE), maxslot(DEFAULT_MAXSLOT), cut_user(0.0), cut_global(0.0),
-    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), any_shear(0)
+    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), any_shear(0), tally_flag(0)
 {
+  heat[0] = heat[1] = heat[2] = 0.0;
   single_enable = 0;
   restartinfo = 1;
   writedata = 1;
@@ -425,12 +426,21 @@ void PairLatticeBond::compute(int eflag, int vflag)
   if (rebuilt) refresh_partners();
   if (!cand_i.empty()) detect_new_contacts();
 
-  if (evflag) {
-    if (any_shear) eval<1, 1>();
-    else eval<1, 0>();
+  // energy tallies are compiled in only when compute lattice/energy asks for them
+  if (tally_flag) {
+    if (evflag) {
+      if (any_shear) eval<1, 1, 1>();
+      else eval<1, 0, 1>();
+    } else {
+      if (any_shear) eval<0, 1, 1>();
+      else eval<0, 0, 1>();
+    }
+  } else if (evflag) {
+    if (any_shear) eval<1, 1, 0>();
+    else eval<1, 0, 0>();
   } else {
-    if (any_shear) eval<0, 1>();
-    else eval<0, 0>();
+    if (any_shear) eval<0, 1, 0>();
+    else eval<0, 0, 0>();
   }
 
   if (vflag_fdotr) virial_fdotr_compute();
@@ -438,10 +448,21 @@ void PairLatticeBond::compute(int eflag, int vflag)
 
 /* ----------------------------------------------------------------------
    the force loop over records (REFERENCE.md, "Model")
-   EVFLAG: tally energy/virial; SHEAR: some type pair has Ks > 0
+   EVFLAG: tally energy/virial; SHEAR: some type pair has Ks > 0;
+   TALLY: accumulate breaking and frictional heat (compute lattice/energy).
+
+   Heat is the energy a record's springs lose other than by doing work on the
+   particles, with the work over a step taken by the trapezoidal rule, which is
+   what velocity Verlet conserves: for a shear spring going from s1 (rotated
+   into the new tangent plane) through the tangential increment dst to s2,
+       Q = Ks/2 [ (s1 + s2).dst - |s2|^2 + |s1|^2 ],
+   which is 0 while the spring is elastic (s2 = s1 + dst), Fs dS of Liu et al.
+   (2017) while it slides, and the spring's energy when it lets go (s2 = 0).
+   A normal spring that breaks at stretch xn (xp at the last step) releases
+   Kn/4 (xp^2 + xn^2): its energy minus the work it does during that step.
 ------------------------------------------------------------------------- */
 
-template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
+template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
 {
   const double *const *const x = atom->x;
   double *const *const f = atom->f;
@@ -449,6 +470,7 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
   const int *const type = atom->type;
   const int nlocal = atom->nlocal;
   const int *const nrec = fix_store->nrec;
+  double q_break_n = 0.0, q_break_s = 0.0, q_friction = 0.0;
 
   for (int i = 0; i < nlocal; i++) {
     const int nr = nrec[i];
@@ -477,9 +499,16 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
         // tensile break: both springs let go
         b.state = LB_BROKEN_TENSION;
         state = LB_BROKEN_TENSION;
+        if (TALLY) {
+          const double xp = prev_stretch(b, radi + radius[j]);
+          q_break_n += 0.25 * p.kn * (xp * xp + xn * xn);
+          q_break_s += spring_release(b, p.ks, dx, dy, dz);
+          b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
+        }
       }
       if (state != LB_INTACT && xn >= 0.0) {
         // open contact: no force, no memory
+        if (TALLY) q_friction += spring_release(b, p.ks, dx, dy, dz);
         b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
         b.dx_prev[0] = dx;
         b.dx_prev[1] = dy;
@@ -496,6 +525,10 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
         b.state = LB_BROKEN_SHEAR;
         state = LB_BROKEN_SHEAR;
         if (xn >= 0.0) {
+          if (TALLY) {
+            const double xp = prev_stretch(b, radi + radius[j]);
+            q_break_n += 0.25 * p.kn * (xp * xp + xn * xn);
+          }
           b.dx_prev[0] = dx;
           b.dx_prev[1] = dy;
           b.dx_prev[2] = dz;
@@ -525,9 +558,12 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
         // add the tangential part of this step's relative displacement
         const double ddx = dx - b.dx_prev[0], ddy = dy - b.dx_prev[1], ddz = dz - b.dx_prev[2];
         const double dn = ddx * nx + ddy * ny + ddz * nz;
-        sx += ddx - dn * nx;
-        sy += ddy - dn * ny;
-        sz += ddz - dn * nz;
+        const double tx = ddx - dn * nx, ty = ddy - dn * ny, tz = ddz - dn * nz;
+        const double s1x = sx, s1y = sy, s1z = sz;    // rotated old spring (for the heat)
+        sx += tx;
+        sy += ty;
+        sz += tz;
+        int broke_now = 0;
 
         const double s2 = sx * sx + sy * sy + sz * sz;
         const double fs2 = p.ks * p.ks * s2;
@@ -536,11 +572,18 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
           if (fs2 > limit * limit || limit < 0.0) {
             b.state = LB_BROKEN_SHEAR;
             state = LB_BROKEN_SHEAR;
+            broke_now = 1;
           }
         }
         if (state != LB_INTACT) {
           if (xn >= 0.0) {
             // broken in shear while in tension: the contact is open
+            if (TALLY) {
+              const double xp = prev_stretch(b, radi + radius[j]);
+              q_break_n += 0.25 * p.kn * (xp * xp + xn * xn);
+              q_break_s += 0.5 * p.ks *
+                  (s1x * tx + s1y * ty + s1z * tz + s1x * s1x + s1y * s1y + s1z * s1z);
+            }
             b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
             b.dx_prev[0] = dx;
             b.dx_prev[1] = dy;
@@ -553,6 +596,13 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
             sx *= scale;
             sy *= scale;
             sz *= scale;
+            if (TALLY) {
+              const double q = 0.5 * p.ks *
+                  ((s1x + sx) * tx + (s1y + sy) * ty + (s1z + sz) * tz - (sx * sx + sy * sy + sz * sz) +
+                   (s1x * s1x + s1y * s1y + s1z * s1z));
+              if (broke_now) q_break_s += q;
+              else q_friction += q;
+            }
           }
         }
         b.shear[0] = sx;
@@ -585,6 +635,67 @@ template <int EVFLAG, int SHEAR> void PairLatticeBond::eval()
     f[i][1] += fyi;
     f[i][2] += fzi;
   }
+  if (TALLY) {
+    heat[0] += q_break_n;
+    heat[1] += q_break_s;
+    heat[2] += q_friction;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   normal stretch of a record at its last update (touch = ri + rj)
+------------------------------------------------------------------------- */
+
+double PairLatticeBond::prev_stretch(const LatticeBondRecord &b, double touch)
+{
+  const double *d = b.dx_prev;
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - touch;
+}
+
+/* ----------------------------------------------------------------------
+   heat of a shear spring that lets go this step (s2 = 0 in the heat
+   formula above): Ks/2 (s1.dst + |s1|^2); the increment's normal part is of
+   second order in the step and is kept, the spring is not rotated
+------------------------------------------------------------------------- */
+
+double PairLatticeBond::spring_release(const LatticeBondRecord &b, double ks, double dx, double dy,
+                                       double dz)
+{
+  const double *sh = b.shear;
+  const double s2 = sh[0] * sh[0] + sh[1] * sh[1] + sh[2] * sh[2];
+  if (s2 == 0.0) return 0.0;
+  const double ds = sh[0] * (dx - b.dx_prev[0]) + sh[1] * (dy - b.dx_prev[1]) +
+      sh[2] * (dz - b.dx_prev[2]);
+  return 0.5 * ks * (s2 + ds);
+}
+
+/* ----------------------------------------------------------------------
+   elastic energy of the records owned by this rank at the current positions
+   (the springs as the last force evaluation left them)
+------------------------------------------------------------------------- */
+
+double PairLatticeBond::local_elastic_energy() const
+{
+  if (!fix_store || !partner_idx) return 0.0;
+  double **x = atom->x;
+  const double *radius = atom->radius;
+  const int *type = atom->type;
+  double energy = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const LatticeBondRecord *r = fix_store->records(i);
+    const int *idx = partner_idx + (bigint) i * maxslot;
+    for (int s = 0; s < fix_store->nrec[i]; s++) {
+      const int j = idx[s];
+      if (j < 0) continue;
+      const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+      const double xn = sqrt(dx * dx + dy * dy + dz * dz) - (radius[i] + radius[j]);
+      if (r[s].state != LB_INTACT && xn >= 0.0) continue;
+      const BondParams &p = params[type[i]][type[j]];
+      const double *sh = r[s].shear;
+      energy += 0.5 * p.kn * xn * xn + 0.5 * p.ks * (sh[0] * sh[0] + sh[1] * sh[1] + sh[2] * sh[2]);
+    }
+  }
+  return energy;
 }
 
 /* ---------------------------------------------------------------------- */

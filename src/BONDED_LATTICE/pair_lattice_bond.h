@@ -52,6 +52,13 @@ class PairLatticeBond : public Pair {
   // records of local atoms whose partner is a ghost/local index, -1 if absent
   const int *partner_index() const { return partner_idx; }
 
+  // energy accounting (compute lattice/energy): heat released on this rank
+  // since the pair style was created, [0] breaking (normal springs),
+  // [1] breaking (shear springs), [2] friction; tallied only while enabled
+  const double *heat_tallies() const { return heat; }
+  void enable_tallies(int flag) { tally_flag = flag; }
+  double local_elastic_energy() const;
+
  protected:
   BondParams **params;
   int **bondable;      // 1 if touching particles of this type pair are bonded at the first run
@@ -68,13 +75,18 @@ class PairLatticeBond : public Pair {
   int partner_nmax;
   std::vector<int> cand_i, cand_j;    // unbonded pairs that may come into contact
   int any_shear;                      // 1 if some type pair has Ks > 0
+  int tally_flag;                     // 1: accumulate heat (compute lattice/energy)
+  double heat[3];                     // see heat_tallies()
 
   void allocate();
   void warn_data_file_has_no_bonds();
   void create_bonds();
   void refresh_partners();
   void detect_new_contacts();
-  template <int EVFLAG, int SHEAR> void eval();
+  template <int EVFLAG, int SHEAR, int TALLY> void eval();
+  static double prev_stretch(const struct LatticeBondRecord &, double touch);
+  static double spring_release(const struct LatticeBondRecord &, double ks, double dx, double dy,
+                               double dz);
 };
 
 }    // namespace LAMMPS_NS

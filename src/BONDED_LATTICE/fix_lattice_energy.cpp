@@ -1,0 +1,228 @@
+/* ----------------------------------------------------------------------
+   BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
+
+   fix LATTICE/ENERGY, created by compute lattice/energy (see its doc page).
+
+   Work on a prescribed group (e.g. end layers moved by fix move):
+       W = sum over steps of [ dKE_group - 1/2 (f_old + f_new) . dx ]
+   per atom, f the force the rest of the system exerts on it, dx its
+   displacement; the trapezoidal rule is what velocity Verlet conserves.
+   The per-atom history holds the last force and position of group atoms.
+
+   The sources' tallies (pair, viscous and wall fixes) are plain per-rank
+   sums that start at zero when the source is created; this fix takes a base
+   at the first setup (and after a restart) and reports the differences,
+   plus the totals carried in a restart file.
+------------------------------------------------------------------------- */
+
+#include "fix_lattice_energy.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "compute_lattice_energy.h"
+#include "domain.h"
+#include "error.h"
+#include "fix_lattice_viscous.h"
+#include "fix_lattice_wall.h"
+#include "force.h"
+#include "group.h"
+#include "modify.h"
+#include "pair_lattice_bond.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+/* ----------------------------------------------------------------------
+   fix ID all LATTICE/ENERGY compute-ID [group ...]
+------------------------------------------------------------------------- */
+
+FixLatticeEnergy::FixLatticeEnergy(LAMMPS *lmp, int narg, char **arg) :
+    FixLatticeAtomHistory(lmp, narg, arg), workbit(0), pair(nullptr), group_work(0.0),
+    group_ke_prev(0.0), need_base(1), start_set(0), energy0(0.0)
+{
+  if (narg < 4) error->all(FLERR, "Illegal fix LATTICE/ENERGY command (internal fix)");
+  compute_id = arg[3];
+  for (int iarg = 4; iarg < narg; iarg++) {
+    const int igroup = group->find(arg[iarg]);
+    if (igroup < 0)
+      error->all(FLERR, "compute lattice/energy work group {} does not exist: define it with the "
+                 "group command first", arg[iarg]);
+    work_groups.emplace_back(arg[iarg]);
+    workbit |= group->bitmask[igroup];
+  }
+  for (int k = 0; k < NTALLY; k++) carried[k] = base[k] = 0.0;
+  restart_global = 1;
+  if (workbit) create_history(6);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeEnergy::setmask()
+{
+  return workbit ? END_OF_STEP : 0;
+}
+
+/* ----------------------------------------------------------------------
+   find the sources and switch their tallies on (again at every run: styles
+   may have been added or replaced since)
+------------------------------------------------------------------------- */
+
+void FixLatticeEnergy::init()
+{
+  pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
+  if (!pair) error->all(FLERR, "compute lattice/energy requires pair_style lattice/bond");
+  pair->enable_tallies(1);
+  viscous.clear();
+  walls.clear();
+  for (auto *fix : modify->get_fix_by_style("^lattice/viscous$")) {
+    auto *v = dynamic_cast<FixLatticeViscous *>(fix);
+    v->enable_tallies(1);
+    viscous.push_back(v);
+  }
+  for (auto *fix : modify->get_fix_by_style("^lattice/wall$")) {
+    auto *w = dynamic_cast<FixLatticeWall *>(fix);
+    w->enable_tallies(1);
+    walls.push_back(w);
+  }
+  // the starting energy and the work groups' forces are taken in setup(): the
+  // fixes that add forces or energy must have done their setup by then
+  const int me = modify->find_fix(id);
+  for (int i = me + 1; i < modify->nfix; i++) {
+    const std::string style = modify->fix[i]->style;
+    if (style == "lattice/wall" || style == "lattice/viscous" || utils::strmatch(style, "^gravity"))
+      error->all(FLERR, "compute lattice/energy {} is defined before fix {} {}: define the "
+                 "compute after the fixes that add forces (lattice/wall, lattice/viscous, "
+                 "gravity), so that the accounting starts from their energies",
+                 compute_id, modify->fix[i]->id, style);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeEnergy::setup(int /*vflag*/)
+{
+  if (workbit) {
+    for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+    group_ke_prev = group_kinetic();
+  }
+  if (need_base) {
+    raw(base);
+    need_base = 0;
+  }
+  if (!start_set) {
+    auto *c = dynamic_cast<ComputeLatticeEnergy *>(modify->get_compute_by_id(compute_id));
+    if (!c) error->all(FLERR, "fix LATTICE/ENERGY: compute {} is gone", compute_id);
+    energy0 = c->stored_energy();
+    start_set = 1;
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeEnergy::end_of_step()
+{
+  double **x = atom->x;
+  double **f = atom->f;
+  const int *mask = atom->mask;
+  double work = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & workbit)) continue;
+    double *h = hist[i];
+    double dx[3] = {x[i][0] - h[3], x[i][1] - h[4], x[i][2] - h[5]};
+    domain->minimum_image(FLERR, dx);
+    work -= 0.5 * ((h[0] + f[i][0]) * dx[0] + (h[1] + f[i][1]) * dx[1] + (h[2] + f[i][2]) * dx[2]);
+    for (int k = 0; k < 3; k++) {
+      h[k] = f[i][k];
+      h[3 + k] = x[i][k];
+    }
+  }
+  const double ke = group_kinetic();
+  group_work += work + ke - group_ke_prev;
+  group_ke_prev = ke;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeEnergy::set_arrays(int i)
+{
+  if (!nvalues) return;
+  for (int k = 0; k < 3; k++) {
+    hist[i][k] = atom->f[i][k];
+    hist[i][3 + k] = atom->x[i][k];
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixLatticeEnergy::group_kinetic() const
+{
+  double **v = atom->v;
+  const double *rmass = atom->rmass;
+  const int *mask = atom->mask;
+  double ke = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & workbit)
+      ke += 0.5 * rmass[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+  return ke;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeEnergy::raw(double *local)
+{
+  for (int k = 0; k < NTALLY; k++) local[k] = 0.0;
+  if (pair) {
+    const double *q = pair->heat_tallies();
+    local[BREAK_NORMAL] = q[0];
+    local[BREAK_SHEAR] = q[1];
+    local[FRICTION] = q[2];
+  }
+  for (auto *v : viscous) local[VISCOUS] += v->heat_tally();
+  for (auto *w : walls) {
+    local[FRICTION] += w->heat_tally();
+    local[WORK] += w->work_tally();
+  }
+  local[WORK] += group_work;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeEnergy::totals(double *out)
+{
+  double local[NTALLY];
+  raw(local);
+  for (int k = 0; k < NTALLY; k++) local[k] -= base[k];
+  MPI_Allreduce(local, out, NTALLY, MPI_DOUBLE, MPI_SUM, world);
+  for (int k = 0; k < NTALLY; k++) out[k] += carried[k];
+}
+
+/* ----------------------------------------------------------------------
+   restart: the totals so far and the starting energy; written by rank 0,
+   but totals() is collective, and this is called on every rank
+------------------------------------------------------------------------- */
+
+void FixLatticeEnergy::write_restart(FILE *fp)
+{
+  double list[NTALLY + 2];
+  totals(list);
+  list[NTALLY] = start_set;
+  list[NTALLY + 1] = energy0;
+  if (comm->me == 0) {
+    int size = sizeof(list);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), NTALLY + 2, fp);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeEnergy::restart(char *buf)
+{
+  auto list = (double *) buf;
+  for (int k = 0; k < NTALLY; k++) carried[k] = list[k];
+  start_set = static_cast<int>(list[NTALLY]);
+  energy0 = list[NTALLY + 1];
+  need_base = 1;
+}
