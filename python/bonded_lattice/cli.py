@@ -55,7 +55,7 @@ def cmd_generate(args: argparse.Namespace) -> int:
     plan = plan_test(rock, bond, lattice, args.test, **_plan_options(args))
     write_data(lattice, out / "data.lattice", plan.mass)
     write_deck(deck_spec(plan, args.test, args.dim, bond, args.confining, args.dump_every,
-                         has_mid_height(lattice)), out / f"in.{args.test}")
+                         has_mid_height(lattice), args.energy), out / f"in.{args.test}")
     print(f"wrote {out / 'data.lattice'} ({lattice.n} particles) and {out / ('in.' + args.test)}")
     print(f"run it with: cd {out} && mpirun -np 2 lmp -in in.{args.test}")
     return 0
@@ -66,10 +66,21 @@ def cmd_run(args: argparse.Namespace) -> int:
 
     summary = run_test(_rock(args), args.dim, args.test, args.n, args.out, np_=args.np,
                        d=args.d, progress=not args.quiet, dump_every=args.dump_every,
-                       orientation=args.orientation, **_plan_options(args))
+                       orientation=args.orientation, energy=args.energy, **_plan_options(args))
     print(summary_table(summary))
+    if summary["energy"]:
+        e = summary["energy"]
+        print(f"energy: external work {e['external_work']:.4g} J, balance error "
+              f"{e['balance_error']:.3g} J (at most {e['max_balance_ratio']:.2g} of the work), "
+              f"peak kinetic energy {100 * e['peak_kinetic_fraction']:.1f}% of the work")
+        if e["breaking_duration_s"]:
+            speed = summary["lateral_width_m"] / e["breaking_duration_s"]
+            print(f"bonds broke within {1e6 * e['breaking_duration_s']:.3g} us (2% to 98% of the "
+                  f"breaking heat); block width / duration = {speed:.3g} m/s (resolution: the "
+                  "thermo interval)")
     print(f"results in {args.out}: summary.json, stress_strain.png"
-          + (", broken_bonds.png" if args.test != "elastic" else ""))
+          + (", broken_bonds.png" if args.test != "elastic" else "")
+          + (", energy.png" if args.energy else ""))
     return 0
 
 
@@ -161,6 +172,8 @@ def _common(p: argparse.ArgumentParser, test: bool = True, choose_test: bool = T
         p.add_argument("--orientation", type=float, default=0.0,
                        help="2D: degrees from the x axis to the close-packed rows (default 0, "
                        "the papers' set-up; 30 puts one bond family along the load)")
+        p.add_argument("--energy", action="store_true",
+                       help="energy budget (compute lattice/energy) in the output, energy.png")
         p.add_argument("--dump-every", type=int, default=0,
                        help="write dump.lammpstrj every this many steps (0: only the first "
                        "and last configurations)")

@@ -144,3 +144,33 @@ def strain_magnitude_png(path: str | Path, results: dict[int, list[dict]],
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+def energy_png(path: str | Path, thermo: dict, title: str = "") -> None:
+    """Energy and heat curves of a run with compute lattice/energy (Liu 2017, Fig. 6).
+
+    Left: elastic and kinetic energy, heat (4-7 summed), external work and the
+    total; right: the heat by kind.  Against time in microseconds.
+    """
+    plt = _pyplot()
+    t = np.asarray(thermo["Time"]) * 1e6
+    col = {k: np.asarray(thermo[f"c_energy[{k}]"]) for k in range(1, 11)}
+    heat = col[4] + col[5] + col[6] + col[7]
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    ax = axes[0]
+    for y, label, style in [(col[1], "elastic", "-"), (col[2], "kinetic", "-"), (heat, "heat", "-"),
+                            (col[8], "external work", "k--"), (col[9], "total", "r:")]:
+        ax.plot(t, y, style, lw=1.3, label=label)
+    ax.set_title(f"{title}\nenergy" if title else "energy", fontsize=9)
+    ax = axes[1]
+    for k, label in [(4, "viscous"), (5, "breaking (normal springs)"),
+                     (6, "breaking (shear springs)"), (7, "friction")]:
+        ax.plot(t, col[k], lw=1.3, label=label)
+    ax.set_title("heat", fontsize=9)
+    for ax in axes:
+        ax.set_xlabel("time (us)")
+        ax.set_ylabel("energy (J)")
+        ax.legend(fontsize=8, loc="upper left")
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
