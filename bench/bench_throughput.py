@@ -90,6 +90,26 @@ pair_coeff      1 1 {KN} {KS} {XB} {FS0} {MUP}
 """,
         damping="lattice/viscous 0.05",
     ),
+    # the same with the energy budget: tallies in the force loop, the walls' and
+    # viscous fix's heat, the compute evaluated at every thermo output
+    "lattice/bond+energy": dict(
+        box_args="1 box",
+        setup=f"""
+atom_style      sphere
+newton          on
+""",
+        after=f"""
+set             type 1 diameter {D}
+set             type 1 mass {MASS}
+pair_style      lattice/bond
+pair_coeff      1 1 {KN} {KS} {XB} {FS0} {MUP}
+""",
+        damping="lattice/viscous 0.05",
+        extra="""
+compute         e all lattice/energy
+thermo_style    custom step pe ke c_e[9] c_e[10]
+""",
+    ),
     # normal springs only (no shear); pair bpm/spring repels unbonded pairs
     "bpm/spring": bpm_model("bond", f"mass            1 {MASS}",
                             f"bpm/spring\nbond_coeff      1 {KN} {XB / D} 0.0"),
@@ -112,6 +132,7 @@ def run_model(name: str, cells: int, steps: int) -> tuple[int, float]:
                                        nz1=cells + 1, d=D, box_args=spec["box_args"]))
     lmp.commands_string(spec["after"])
     lmp.commands_string(LOADING.format(damping=spec["damping"], skin=0.1 * D))
+    lmp.commands_string(spec.get("extra", ""))
     natoms = lmp.get_natoms()
     lmp.command("run 100")  # setup, bond creation, warm caches
     t0 = time.perf_counter()
@@ -125,7 +146,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cells", type=int, default=8, help="fcc cells per side (4 atoms each)")
     parser.add_argument("--steps", type=int, default=2000)
-    parser.add_argument("--models", nargs="+", default=list(MODELS))
+    parser.add_argument("--models", nargs="+", default=list(MODELS), choices=list(MODELS))
     args = parser.parse_args()
     results = {}
     for name in args.models:

@@ -75,13 +75,19 @@ ELASTIC_WINDOW = (0.2, 1.0)
 
 def _elastic_window(strain: np.ndarray, stress: np.ndarray,
                     window: tuple[float, float]) -> np.ndarray:
-    """Mask of the points with |stress| between the window's fractions of the peak, before it."""
+    """Mask of the points with |stress| between the window's fractions of the peak.
+
+    Only the rows before |stress| first exceeds the upper fraction count: once
+    micro-cracks open, the stress can fall back into the window at much larger
+    strains (3D compression, about 30% of Cu).
+    """
     mag = np.abs(stress)
-    ipeak = int(np.argmax(mag))
-    peak = mag[ipeak]
-    idx = np.arange(len(stress))
+    peak = mag.max()
     lo, hi = window
-    return (idx <= ipeak) & (mag >= lo * peak) & (mag <= hi * peak) & (strain != 0)
+    above = np.nonzero(mag > hi * peak)[0]
+    end = int(above[0]) if len(above) else len(mag)
+    idx = np.arange(len(stress))
+    return (idx < end) & (mag >= lo * peak) & (strain != 0)
 
 
 def youngs_modulus(strain: np.ndarray, stress: np.ndarray,
