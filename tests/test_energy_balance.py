@@ -221,3 +221,34 @@ run 500
     a, b = whole.last_thermo(), second.last_thermo()
     for col in ("c_e[1]", "c_e[2]", "c_e[4]", "c_e[9]", "c_e[10]"):
         assert b[col][-1] == pytest.approx(a[col][-1], rel=1e-9), col
+
+
+def test_gravity_energy_enters_the_balance():
+    # the 72-particle block dropped 1e-6 m onto a floor under 1000 g, damped: the
+    # potential energy it loses is found again as elastic energy, heat and the
+    # floor's work (zero: it does not move)
+    from lammps import lammps
+
+    errors = []
+    for dt in (2e-8, 1e-8):
+        lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+        block = BLOCK.format(mass=MASS, kn=KN, ks=KS, xb=100 * XB, fs0=100 * FS0, mup=MUP,
+                             extra="", dt=dt, steps=0)
+        lmp.commands_string(block.split("velocity")[0] + f"""
+fix nve all nve
+fix floor all lattice/wall ylo $(bound(all,ymin)-0.5e-3-1e-6) {2 * KN} 0 0
+fix gravity all gravity 9810 vector 0 -1 0
+fix damp all lattice/viscous 2000
+compute e all lattice/energy
+timestep {dt}
+run {int(round(1e-4 / dt))}
+""")
+        e = lmp.numpy.extract_compute("e", 0, 1).copy()
+        y = lmp.numpy.extract_atom("x")[: lmp.get_natoms(), 1].copy()
+        lmp.close()
+        assert e[0] > 0 and e[3] > 0      # the block is compressed and the fall was damped
+        # element 3 is fix gravity's energy, sum m g y (y from the origin)
+        assert e[2] == pytest.approx(MASS * 9810 * y.sum(), rel=1e-9)
+        errors.append(abs(e[9]))
+    assert errors[0] < 1e-3 * abs(e[3])
+    assert errors[0] / errors[1] == pytest.approx(4.0, rel=0.25)
