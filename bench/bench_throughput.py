@@ -78,7 +78,7 @@ bond_style      {bond_lines}
 MODELS = {
     "lattice/bond": dict(
         box_args="1 box",
-        setup=f"""
+        setup="""
 atom_style      sphere
 newton          on
 """,
@@ -94,7 +94,7 @@ pair_coeff      1 1 {KN} {KS} {XB} {FS0} {MUP}
     # viscous fix's heat, the compute evaluated at every thermo output
     "lattice/bond+energy": dict(
         box_args="1 box",
-        setup=f"""
+        setup="""
 atom_style      sphere
 newton          on
 """,

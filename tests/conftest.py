@@ -11,9 +11,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-
 from bonded_lattice import runner
 from bonded_lattice.runner import RunResult
+
 
 def run_deck(script: str, workdir: Path, np: int = 1, name: str = "in.test",
              files: dict[str, str] | None = None,

@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 
 import pytest
-
 from bonded_lattice.calibration import _next_input, calibrate, calibration_table
 from bonded_lattice.rocks import get_rock
 

@@ -3,11 +3,9 @@
 from __future__ import annotations
 
 import pytest
-
 from bonded_lattice.experiment import run_test
 from bonded_lattice.plotting import read_dump
 from bonded_lattice.rocks import get_rock
-
 from conftest import run_deck
 
 
@@ -36,7 +34,7 @@ def test_per_atom_broken_counts_add_up_to_the_global_counts(tmp_path):
     ("peratom", "expected compute ID group lattice/bonds [peratom intact|tension|shear]"),
 ])
 def test_bad_peratom_keyword_is_named(tmp_path, args, fragment):
-    deck = """
+    deck = f"""
 units si
 atom_style sphere
 region box block -1 1 -1 1 -1 1
@@ -44,7 +42,7 @@ create_box 1 box
 pair_style lattice/bond
 pair_coeff * * 1.0e3 0 1.0e-3 1.0 0.1
 compute c all lattice/bonds {args}
-""".format(args=args)
+"""
     result = run_deck(deck, tmp_path)
     assert result.returncode != 0
     assert fragment in result.output

@@ -15,13 +15,28 @@ import warnings
 
 import numpy as np
 import pytest
-
 from bonded_lattice import rocks
 from bonded_lattice.conversion import (
-    MU_I_MIN, MU_P_MAX, NU_MAX, BondParameters, RockProperties, bond_to_rock, c_open,
-    compressive_strength_caveat, critical_time_step, lame_lambda_2d, lattice_mass,
-    paper_damping_2d, paper_damping_3d, rock_to_bond, rock_to_bond_props, shear_modulus_2d,
-    tensile_failure_strain_2d, validate_bond, validate_rock)
+    MU_I_MIN,
+    MU_P_MAX,
+    NU_MAX,
+    BondParameters,
+    RockProperties,
+    bond_to_rock,
+    c_open,
+    compressive_strength_caveat,
+    critical_time_step,
+    lame_lambda_2d,
+    lattice_mass,
+    paper_damping_2d,
+    paper_damping_3d,
+    rock_to_bond,
+    rock_to_bond_props,
+    shear_modulus_2d,
+    tensile_failure_strain_2d,
+    validate_bond,
+    validate_rock,
+)
 from bonded_lattice.rocks import ROCKS, Rock, get_rock, list_rocks, register_rock
 
 S2, S3 = math.sqrt(2.0), math.sqrt(3.0)

@@ -11,10 +11,8 @@ import math
 
 import numpy as np
 import pytest
-
 from bonded_lattice.experiment import run_test
 from bonded_lattice.rocks import get_rock
-
 from conftest import run_deck
 
 # quartz 2D, d = 1 mm (REFERENCE.md)

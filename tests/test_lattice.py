@@ -10,10 +10,17 @@ import math
 
 import numpy as np
 import pytest
-
-from bonded_lattice.lattice import (LAYER_SPACING, Lattice, block_2d, block_3d,
-                                    close_packed_block_3d, contact_pairs, hex_block_2d,
-                                    pairs_within, write_data)
+from bonded_lattice.lattice import (
+    LAYER_SPACING,
+    Lattice,
+    block_2d,
+    block_3d,
+    close_packed_block_3d,
+    contact_pairs,
+    hex_block_2d,
+    pairs_within,
+    write_data,
+)
 
 D = 1.0e-3
 PAPER_2D = {2: 3, 4: 18, 8: 68, 15: 247, 30: 1033, 60: 4106, 120: 16611}
@@ -274,7 +281,7 @@ read_data {path}
 """)
     n = lmp.get_natoms()
     order = np.argsort(lmp.numpy.extract_atom("id")[:n])
-    get = lambda name: np.array(lmp.numpy.extract_atom(name)[:n])[order]  # noqa: E731
+    get = lambda name: np.array(lmp.numpy.extract_atom(name)[:n])[order]
     return n, get("x"), get("radius"), get("rmass"), get("type")
 
 

@@ -5,16 +5,15 @@ then the block relaxes for 4000 steps at 4.5 times the papers' damping (overdamp
 so each thermo row is a static equilibrium to well below 1e-6).  The mid-height
 gauges converge to the formula as the block grows, the all-particle lateral fit
 much more slowly (free-face relaxation, docs/design.md).  Measured (static,
-2026-12-01): gauges -1.4% / -0.7% / -0.4%, all-particle fit -5.0% / -3.4% / -2.7%
-at 5461 / 18079 / 37681 elements.
+2026-12-01, 290 s for the three): gauges -1.29% / -0.43% / -0.30%, all-particle fit
+-3.75% / -2.53% / -2.05% at 5461 / 18079 / 37681 elements.
 """
 
 from __future__ import annotations
 
 import pytest
-
-from bonded_lattice.rocks import get_rock
 from bonded_lattice.experiment import run_test
+from bonded_lattice.rocks import get_rock
 
 # expected gauge error bound and all-particle deficit bound per size (n_y)
 CASES = {16: (0.02, 0.04), 24: (0.01, 0.025), 30: (0.01, 0.02)}

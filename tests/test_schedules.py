@@ -3,10 +3,8 @@
 from __future__ import annotations
 
 import pytest
-
 from bonded_lattice.experiment import PAPER_SCHEDULES, run_test
 from bonded_lattice.rocks import get_rock
-
 from conftest import run_deck
 
 ONE_PARTICLE = """

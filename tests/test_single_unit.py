@@ -76,7 +76,6 @@ from dataclasses import asdict
 
 import numpy as np
 import pytest
-
 from bonded_lattice.conversion import lattice_mass, rock_to_bond
 
 S2 = math.sqrt(2.0)

@@ -7,7 +7,6 @@ import math
 
 import numpy as np
 import pytest
-
 from bonded_lattice.cli import main
 from bonded_lattice.conversion import BondParameters, bond_to_rock, rock_to_bond
 from bonded_lattice.decks import DeckSpec, deck_text

@@ -7,7 +7,7 @@ gauges on the side faces) and ``v_stress`` (Pa, tension positive).
 
 Poisson's ratio comes from the gauges, as in a laboratory test: the all-particle
 fit includes the platens' end zones and the free faces' surface relaxation and
-converges slowly (3D: -3.8% at 5461 elements, -2.7% at 37681), while the gauges
+converges slowly (3D: -3.8% at 5461 elements, -2.1% at 37681), while the gauges
 are within 1% from about 10^4 elements (docs/validation.md).  Under a constant platen speed the first elastic wave
 needs a few crossings to load the block evenly, so the elastic fits skip the
 start of the curve.

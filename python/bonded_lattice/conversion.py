@@ -50,10 +50,25 @@ import warnings
 from dataclasses import astuple, dataclass
 
 __all__ = [
-    "RockProperties", "BondParameters", "rock_to_bond", "rock_to_bond_props", "bond_to_rock",
-    "validate_rock", "validate_bond", "compressive_strength_caveat", "lattice_mass",
-    "paper_damping_2d", "paper_damping_3d", "critical_time_step", "shear_modulus_2d",
-    "lame_lambda_2d", "c_open", "tensile_failure_strain_2d", "NU_MAX", "MU_I_MIN", "MU_P_MAX",
+    "MU_I_MIN",
+    "MU_P_MAX",
+    "NU_MAX",
+    "BondParameters",
+    "RockProperties",
+    "bond_to_rock",
+    "c_open",
+    "compressive_strength_caveat",
+    "critical_time_step",
+    "lame_lambda_2d",
+    "lattice_mass",
+    "paper_damping_2d",
+    "paper_damping_3d",
+    "rock_to_bond",
+    "rock_to_bond_props",
+    "shear_modulus_2d",
+    "tensile_failure_strain_2d",
+    "validate_bond",
+    "validate_rock",
 ]
 
 SQ2 = math.sqrt(2.0)

@@ -168,7 +168,7 @@ def _gauges(spec: DeckSpec) -> str:
         return ("# no particles at mid-height (a single unit): the gauge is the all-particle fit\n"
                 "variable        gauge equal v_lateral\n")
     ax, d = spec.axis, spec.d
-    zone = (f"$(v_lo0+0.25*v_H0) $(v_hi0-0.25*v_H0)")
+    zone = ("$(v_lo0+0.25*v_H0) $(v_hi0-0.25*v_H0)")
     text = "# lateral strain gauges: outermost particles of the side faces at mid-height\n"
     names = []
     for a in ("x",) if spec.dim == 2 else ("x", "y"):

@@ -9,14 +9,21 @@ from __future__ import annotations
 
 import json
 import math
-
-import numpy as np
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
+import numpy as np
+
 from . import __version__
 from .analysis import elastic_from_dump, measure
-from .conversion import BondParameters, c_open, lattice_mass, paper_damping_2d, paper_damping_3d, rock_to_bond
+from .conversion import (
+    BondParameters,
+    c_open,
+    lattice_mass,
+    paper_damping_2d,
+    paper_damping_3d,
+    rock_to_bond,
+)
 from .decks import DeckSpec, write_deck
 from .lattice import Lattice, close_packed_block_3d, hex_block_2d, write_data
 from .plotting import broken_bond_map_png, energy_png, stress_strain_png

@@ -130,7 +130,7 @@ class Lattice:
         The stress convention under which a block's measured E matches the
         lattice formulas to 0.8% (the outer half-particle of the free sides carries
         almost no load): with the outer area instead, E comes out low by about
-        100/N % in 2D and 180/n_y % in 3D (docs/validation.md).
+        100/N % in 2D and 180/n_y % in 3D (measured with the elastic tests).
         2D: ``width`` per unit thickness; 3D: ``x extent * y extent``.
         """
         ext = self.bounds[:, 1] - self.bounds[:, 0]

@@ -8,7 +8,7 @@ the returned directory on ``LAMMPS_PLUGIN_PATH``.
 from __future__ import annotations
 
 import ctypes
-import importlib.metadata as metadata
+from importlib import metadata
 from pathlib import Path
 
 PLUGIN_FILE = "bondedlatticeplugin.so"

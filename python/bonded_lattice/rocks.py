@@ -20,7 +20,7 @@ from types import MappingProxyType
 
 from .conversion import RockProperties, compressive_strength_caveat, validate_rock
 
-__all__ = ["Rock", "ROCKS", "get_rock", "register_rock", "list_rocks"]
+__all__ = ["ROCKS", "Rock", "get_rock", "list_rocks", "register_rock"]
 
 
 @dataclass(frozen=True)
