@@ -288,8 +288,13 @@ def _output(spec: DeckSpec) -> str:
 dump_modify     particles sort id format float %.17g
 """
     halt = ""
+    if spec.energy and spec.test != "elastic":
+        halt += """# breaking heat and broken bonds at every step, to time the fracture (Liu 2017 reads
+# the crack's crossing time off the breaking heat)
+fix             breaklog all ave/time 1 1 1 c_energy[5] c_energy[6] c_bonds[2] c_bonds[3] file breaking.dat
+"""
     if spec.test != "elastic" and spec.halt_fraction > 0:
-        halt = f"""# stop once the block has failed: |stress| below {spec.halt_fraction:g} of its peak so far
+        halt += f"""# stop once the block has failed: |stress| below {spec.halt_fraction:g} of its peak so far
 variable        smag equal abs(v_stress)
 fix             peaklog all vector {spec.thermo_every} v_smag
 variable        failed equal v_smag<{spec.halt_fraction:g}*max(f_peaklog)

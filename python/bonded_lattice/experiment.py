@@ -291,6 +291,8 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
         "nu_all_particles": got.nu_all,
         "measured_from_dump": from_dump,
         "energy": energy_summary(thermo) if energy else None,
+        "breaking_duration_step_resolved_s": breaking_duration(out / "breaking.dat", plan.dt)
+        if energy else None,
         "lateral_width_m": lattice.width,
         "wall_time_s": result.wall_time,
     }
@@ -300,6 +302,26 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
 
 ENERGY_NAMES = ("elastic", "kinetic", "gravitational", "viscous_heat", "breaking_heat_normal",
                 "breaking_heat_shear", "frictional_heat", "external_work", "total", "balance_error")
+
+
+def breaking_duration(path: str | Path, dt: float, fraction: float = 0.02) -> float | None:
+    """Time from ``fraction`` to ``1 - fraction`` of the final breaking heat, in s.
+
+    Reads the per-step log ``breaking.dat`` of a deck with the energy budget
+    (columns: step, breaking heat normal, shear, bonds broken in tension, in shear).
+    """
+    path = Path(path)
+    if not path.exists():
+        return None
+    rows = np.loadtxt(path, comments="#", ndmin=2)
+    if len(rows) == 0:
+        return None
+    heat = rows[:, 1] + rows[:, 2]
+    if heat[-1] <= 0:
+        return None
+    onset = rows[int(np.argmax(heat > fraction * heat[-1])), 0]
+    end = rows[int(np.argmax(heat >= (1 - fraction) * heat[-1])), 0]
+    return float((end - onset) * dt)
 
 
 def energy_summary(thermo: dict) -> dict:

@@ -125,6 +125,10 @@ def run_all(v: Validation) -> dict:
     for test in ("tension", "compression"):
         res["energy"][test] = v.run(f"3d/energy_n{ENERGY_SIZE}_{test}", rock_for(3), 3, test,
                                     ENERGY_SIZE, energy=True)
+    if v.slow:
+        res["energy"]["tension, papers' schedule"] = v.run(
+            f"3d/energy_paper_n{ENERGY_SIZE}_tension", rock_for(3), 3, "tension", ENERGY_SIZE,
+            energy=True, schedule="paper")
     env = ENVELOPE
     rock = rock_for(env["dim"])
     res["envelope"] = [v.run(f"{env['dim']}d/confined_{p / 1e6:g}MPa", rock, env["dim"],
@@ -325,27 +329,35 @@ def write_doc(res: dict, v: Validation, doc: Path) -> None:
         "energy + heat against the work of the platens.")
     add("")
     add("| test | external work (J) | max abs(balance error) / work | peak kinetic energy / work "
-        "| bonds break within (us) | viscous / breaking (n, s) / frictional heat (% of work) |")
-    add("|---|---|---|---|---|---|")
+        "| bonds break within (us) | width / that time (m/s) "
+        "| viscous / breaking (n, s) / frictional heat (% of work) |")
+    add("|---|---|---|---|---|---|---|")
     for test, r in res["energy"].items():
         e = r["energy"]
         w = e["external_work"]
         heats = ", ".join(f"{100 * e[k] / w:.1f}" for k in (
             "viscous_heat", "breaking_heat_normal", "breaking_heat_shear", "frictional_heat"))
-        dur = e["breaking_duration_s"]
+        dur = r.get("breaking_duration_step_resolved_s") or e["breaking_duration_s"]
+        # a speed only for tension: compression fails by sliding, not by a running crack
+        speed = f"{r['lateral_width_m'] / dur:.0f}" if dur and "tension" in test else ""
         add(f"| {test} | {w:.4g} | {e['max_balance_ratio']:.1e} | "
             f"{100 * e['peak_kinetic_fraction']:.1f}% | "
-            f"{'' if dur is None else f'{1e6 * dur:.2f}'} | {heats} |")
-        (img / f"energy_3d_{test}.png").write_bytes(
-            (v.out / f"3d/energy_n{ENERGY_SIZE}_{test}" / "energy.png").read_bytes())
+            f"{'' if dur is None else f'{1e6 * dur:.2f}'} | {speed} | {heats} |")
+        if test in ("tension", "compression"):
+            (img / f"energy_3d_{test}.png").write_bytes(
+                (v.out / f"3d/energy_n{ENERGY_SIZE}_{test}" / "energy.png").read_bytes())
     add("")
     add("The paper reports the kinetic energy peaking at 16.2% of the total in its tension "
         "test and the bonds breaking within 2.83 us (a crack crossing the 1.2 cm block at "
-        "about 4240 m/s).  Our constant-speed loading stresses the block evenly, so bonds "
-        "break across the whole section at once rather than along one running crack; the "
-        "breaking duration is resolved only to the thermo interval.  The balance error is "
-        "the integrator's: it falls fourfold when dt is halved "
-        "(`tests/test_energy_balance.py`).")
+        "about 4240 m/s).  The breaking time here is taken at every step (2% to 98% of the "
+        "breaking heat, `breaking.dat`).  Under our constant-speed loading the whole failure "
+        "plane is loaded evenly and its bonds break almost together, faster than a wave "
+        "crosses the block (P-wave speed sqrt(E/rho) = 5830 m/s); under the papers' stepwise "
+        "schedule the failure runs across the block as a crack, at a speed close to the "
+        "paper's.  The kinetic energy peaks at the fractions in the table (the paper: 16.2%); "
+        "we have not found why the stepwise run converts less of the work into motion.  "
+        "The balance error is the "
+        "integrator's: it falls fourfold when dt is halved (`tests/test_energy_balance.py`).")
     add("")
     add("![energy and heat, tension](img/energy_3d_tension.png)")
     add("![energy and heat, compression](img/energy_3d_compression.png)")
