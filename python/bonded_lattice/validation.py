@@ -353,8 +353,8 @@ def write_doc(res: dict, v: Validation, doc: Path) -> None:
         "breaking heat, `breaking.dat`).  Under our constant-speed loading the whole failure "
         "plane is loaded evenly and its bonds break almost together, faster than a wave "
         "crosses the block (P-wave speed sqrt(E/rho) = 5830 m/s); under the papers' stepwise "
-        "schedule the failure runs across the block as a crack, at a speed close to the "
-        "paper's.  The kinetic energy peaks at the fractions in the table (the paper: 16.2%); "
+        "schedule they break over a time that fits a crack crossing the block at a speed "
+        "close to the paper's.  The kinetic energy peaks at the fractions in the table (the paper: 16.2%); "
         "we have not found why the stepwise run converts less of the work into motion.  "
         "The balance error is the "
         "integrator's: it falls fourfold when dt is halved (`tests/test_energy_balance.py`).")
