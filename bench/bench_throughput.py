@@ -90,26 +90,6 @@ pair_coeff      1 1 {KN} {KS} {XB} {FS0} {MUP}
 """,
         damping="lattice/viscous 0.05",
     ),
-    # the same with the energy budget: tallies in the force loop, the walls' and
-    # viscous fix's heat, the compute evaluated at every thermo output
-    "lattice/bond+energy": dict(
-        box_args="1 box",
-        setup="""
-atom_style      sphere
-newton          on
-""",
-        after=f"""
-set             type 1 diameter {D}
-set             type 1 mass {MASS}
-pair_style      lattice/bond
-pair_coeff      1 1 {KN} {KS} {XB} {FS0} {MUP}
-""",
-        damping="lattice/viscous 0.05",
-        extra="""
-compute         e all lattice/energy
-thermo_style    custom step pe ke c_e[9] c_e[10]
-""",
-    ),
     # normal springs only (no shear); pair bpm/spring repels unbonded pairs
     "bpm/spring": bpm_model("bond", f"mass            1 {MASS}",
                             f"bpm/spring\nbond_coeff      1 {KN} {XB / D} 0.0"),
@@ -119,6 +99,14 @@ thermo_style    custom step pe ke c_e[9] c_e[10]
         f"bpm/rotational\nbond_coeff      1 {KN} {KS} 0.0 0.0 {FS0 * 10} {FS0 * 10} "
         "1.0e-3 1.0e-3 0.0 0.0 0.0 0.0"),
 }
+
+
+# the same with the energy budget: tallies in the force loop, the viscous fix's heat,
+# the compute evaluated at every thermo output
+MODELS["lattice/bond+energy"] = {**MODELS["lattice/bond"], "extra": """
+compute         e all lattice/energy
+thermo_style    custom step pe ke c_e[9] c_e[10]
+"""}
 
 
 def run_model(name: str, cells: int, steps: int) -> tuple[int, float]:
