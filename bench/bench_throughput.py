@@ -13,6 +13,7 @@ Prints particle-steps per second per model and the ratio to lattice/bond.
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import time
 
@@ -130,18 +131,36 @@ def run_model(name: str, cells: int, steps: int) -> tuple[int, float]:
     return natoms, natoms * steps / elapsed
 
 
+def world_rank() -> int:
+    """This process's MPI rank (0 when not run under mpirun)."""
+    from lammps import lammps
+
+    lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+    rank = lmp.extract_setting("world_rank")
+    lmp.close()
+    return rank
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cells", type=int, default=8, help="fcc cells per side (4 atoms each)")
     parser.add_argument("--steps", type=int, default=2000)
     parser.add_argument("--models", nargs="+", default=list(MODELS), choices=list(MODELS))
+    parser.add_argument("--json", action="store_true",
+                        help="one JSON line per model (for bench/run.py); works under mpirun")
     args = parser.parse_args()
+    rank = world_rank()
     results = {}
     for name in args.models:
         natoms, rate = run_model(name, args.cells, args.steps)
         results[name] = rate
-        print(f"{name:16s} {natoms:8d} particles  {rate:12.4g} particle-steps/s", flush=True)
-    if "lattice/bond" in results:
+        if rank != 0:
+            continue
+        if args.json:
+            print(json.dumps({"model": name, "particles": natoms, "rate": rate}), flush=True)
+        else:
+            print(f"{name:16s} {natoms:8d} particles  {rate:12.4g} particle-steps/s", flush=True)
+    if "lattice/bond" in results and rank == 0 and not args.json:
         ref = results["lattice/bond"]
         for name, rate in results.items():
             print(f"lattice/bond / {name:16s} = {ref / rate:8.2f}")
