@@ -6,6 +6,7 @@
 #include "fix_lattice_atom_history.h"
 
 #include "atom.h"
+#include "domain.h"
 #include "memory.h"
 
 using namespace LAMMPS_NS;
@@ -111,4 +112,11 @@ int FixLatticeAtomHistory::maxsize_restart()
 double FixLatticeAtomHistory::memory_usage()
 {
   return (double) atom->nmax * nvalues * sizeof(double);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeAtomHistory::unwrap_step_triclinic(double *d) const
+{
+  domain->minimum_image(FLERR, d);
 }

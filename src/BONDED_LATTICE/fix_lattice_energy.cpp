@@ -131,7 +131,7 @@ void FixLatticeEnergy::end_of_step()
     if (!(mask[i] & workbit)) continue;
     double *h = hist[i];
     double dx[3] = {x[i][0] - h[3], x[i][1] - h[4], x[i][2] - h[5]};
-    domain->minimum_image(FLERR, dx);
+    unwrap_step(dx);
     work -= 0.5 * ((h[0] + f[i][0]) * dx[0] + (h[1] + f[i][1]) * dx[1] + (h[2] + f[i][2]) * dx[2]);
     for (int k = 0; k < 3; k++) {
       h[k] = f[i][k];

@@ -242,7 +242,7 @@ void FixLatticeWall::apply_forces(bool step_taken)
     double *s = hist[i];        // shear spring
     double *xprev = hist[i] + 3;  // position at the last step
     double inc[3] = {x[i][0] - xprev[0], x[i][1] - xprev[1], x[i][2] - xprev[2]};
-    domain->minimum_image(FLERR, inc);
+    unwrap_step(inc);
     inc[dim] = 0.0;
     xprev[0] = x[i][0];
     xprev[1] = x[i][1];
