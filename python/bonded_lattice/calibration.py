@@ -73,7 +73,7 @@ class CalibrationResult:
         return json.dumps(data, indent=2)
 
 
-def _error(prop: str, measured: float, target: float) -> float:
+def _error(measured: float, target: float) -> float:
     """Relative error (nu too: the 2% goal is relative)."""
     return measured / target - 1.0
 
@@ -146,10 +146,10 @@ def calibrate(rock: Rock, dim: int, n: int, out: str | Path, np_: int = 2,
             steps.append(CalibrationStep(stage, dict(inputs), got))
             if progress:
                 print(f"calibrate {stage} run {k}: " + ", ".join(
-                    f"{p} {100 * _error(p, got[p], target[p]):+.2f}%" for p in props))
+                    f"{p} {100 * _error(got[p], target[p]):+.2f}%" for p in props))
             for p in props:
                 history[p].append((inputs[p], got[p]))
-            if all(abs(_error(p, got[p], target[p])) <= tol for p in props):
+            if all(abs(_error(got[p], target[p])) <= tol for p in props):
                 break
             if k + 1 < max_runs:
                 for p in props:
@@ -159,7 +159,7 @@ def calibrate(rock: Rock, dim: int, n: int, out: str | Path, np_: int = 2,
             inputs[p] = history[p][-1][0]
     bond = rock_to_bond(inputs["E"], inputs["nu"], inputs["Tu"], inputs["Cu"], inputs["mu_i"],
                         d, dim)
-    errors = {p: _error(p, measured[p], target[p]) for p in PROPERTIES}
+    errors = {p: _error(measured[p], target[p]) for p in PROPERTIES}
     corrections = {"E": inputs["E"] / target["E"], "nu": inputs["nu"] - target["nu"],
                    "Tu": inputs["Tu"] / target["Tu"], "Cu": inputs["Cu"] / target["Cu"]}
     result = CalibrationResult(rock=rock.name, dim=dim, n=n, particles=particles, tol=tol,

@@ -73,7 +73,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         print(f"energy: external work {e['external_work']:.4g} J, balance error "
               f"{e['balance_error']:.3g} J (at most {e['max_balance_ratio']:.2g} of the work), "
               f"peak kinetic energy {100 * e['peak_kinetic_fraction']:.1f}% of the work")
-        duration = summary["breaking_duration_step_resolved_s"]
+        duration = e["breaking_duration_s"]
         if duration:
             speed = summary["lateral_width_m"] / duration
             print(f"bonds broke within {1e6 * duration:.3g} us (2% to 98% of the breaking heat, "

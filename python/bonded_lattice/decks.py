@@ -168,19 +168,15 @@ def _gauges(spec: DeckSpec) -> str:
         return ("# no particles at mid-height (a single unit): the gauge is the all-particle fit\n"
                 "variable        gauge equal v_lateral\n")
     ax, d = spec.axis, spec.d
-    zone = ("$(v_lo0+0.25*v_H0) $(v_hi0-0.25*v_H0)")
+    zone = ("$(v_lo0+0.25*v_H0)", "$(v_hi0-0.25*v_H0)")
     text = "# lateral strain gauges: outermost particles of the side faces at mid-height\n"
     names = []
     for a in ("x",) if spec.dim == 2 else ("x", "y"):
         k = "xyz".index(a) + 1
         for side, lo, hi in (("hi", f"$(bound(all,{a}max)-{0.6 * d!r})", "INF"),
                              ("lo", "INF", f"$(bound(all,{a}min)+{0.6 * d!r})")):
-            bounds = {"x": ["INF", "INF"], "y": ["INF", "INF"], "z": ["INF", "INF"]}
-            bounds[a] = [lo, hi]
-            bounds[ax] = zone.split()
             g = f"g{a}{side}"
-            text += (f"region          {g} block {' '.join(bounds['x'] + bounds['y'] + bounds['z'])} "
-                     f"units box\n"
+            text += (f"region          {g} block {_block({a: (lo, hi), ax: zone})} units box\n"
                      f"group           {g} region {g}\n"
                      f"compute         u{g} {g} reduce ave c_disp[{k}]\n")
         text += (f"variable        gauge_{a} equal (c_ug{a}hi-c_ug{a}lo)/"
@@ -191,11 +187,14 @@ def _gauges(spec: DeckSpec) -> str:
     return text
 
 
+def _block(bounds: dict[str, tuple[str, str]]) -> str:
+    """Region block bounds, INF along the axes not given, e.g. 'INF INF lo hi INF INF'."""
+    return " ".join(" ".join(bounds.get(a, ("INF", "INF"))) for a in "xyz")
+
+
 def _slab(axis: str, lo: str, hi: str) -> str:
-    """Region bounds of a slab across the loading axis, e.g. 'INF INF lo hi INF INF'."""
-    bounds = {"x": ["INF", "INF"], "y": ["INF", "INF"], "z": ["INF", "INF"]}
-    bounds[axis] = [lo, hi]
-    return " ".join(bounds["x"] + bounds["y"] + bounds["z"])
+    """Region bounds of a slab across the loading axis."""
+    return _block({axis: (lo, hi)})
 
 
 def _vector(axis: str, value: str, other: str = "0") -> str:

@@ -100,16 +100,16 @@ void ComputeLatticeEnergy::stored_parts(double *parts)
     local[1] += 0.5 * rmass[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
   MPI_Allreduce(local, parts, 2, MPI_DOUBLE, MPI_SUM, world);
   // fixes that are already global sums: the walls' springs and gravity
-  for (auto *wall : modify->get_fix_by_style("^lattice/wall$")) parts[0] += wall->compute_scalar();
+  for (auto *wall : fix->wall_fixes()) parts[0] += wall->compute_scalar();
   parts[2] = 0.0;
-  for (auto *g : modify->get_fix_by_style("^gravity")) parts[2] += g->compute_scalar();
+  for (auto *g : fix->gravity_fixes()) parts[2] += g->compute_scalar();
 }
 
 /* ---------------------------------------------------------------------- */
 
 double ComputeLatticeEnergy::stored_energy()
 {
-  if (!pair) init();
+  if (!pair || !fix) init();
   double parts[3];
   stored_parts(parts);
   return parts[0] + parts[1] + parts[2];

@@ -86,6 +86,7 @@ void FixLatticeEnergy::init()
     w->enable_tallies(1);
     walls.push_back(w);
   }
+  gravity = modify->get_fix_by_style("^gravity");
   // the starting energy and the work groups' forces are taken in setup(): the
   // fixes that add forces or energy must have done their setup by then
   const int me = modify->find_fix(id);

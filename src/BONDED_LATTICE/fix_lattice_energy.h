@@ -43,6 +43,9 @@ class FixLatticeEnergy : public FixLatticeAtomHistory {
   // the total energy when the accounting started, and whether it has
   bool started() const { return start_set; }
   double start_energy() const { return energy0; }
+  // the sources of stored energy outside the pair style, found at init()
+  const std::vector<class FixLatticeWall *> &wall_fixes() const { return walls; }
+  const std::vector<class Fix *> &gravity_fixes() const { return gravity; }
 
  protected:
   std::string compute_id;            // the compute lattice/energy that owns this fix
@@ -51,6 +54,7 @@ class FixLatticeEnergy : public FixLatticeAtomHistory {
   class PairLatticeBond *pair;
   std::vector<class FixLatticeViscous *> viscous;
   std::vector<class FixLatticeWall *> walls;
+  std::vector<class Fix *> gravity;
 
   double carried[NTALLY];    // totals brought in by a restart file
   double base[NTALLY];       // this rank's raw tallies when counting began

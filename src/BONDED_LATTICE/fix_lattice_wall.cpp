@@ -203,13 +203,6 @@ void FixLatticeWall::post_force(int /*vflag*/)
   apply_forces(true);
 }
 
-/* ---------------------------------------------------------------------- */
-
-void FixLatticeWall::enable_tallies(int flag)
-{
-  tally_flag = flag;
-}
-
 /* ----------------------------------------------------------------------
    wall forces at the current wall position; a servo wall then moves for
    the next step by gain * (force error) / (Kn * contacts), the usual DEM

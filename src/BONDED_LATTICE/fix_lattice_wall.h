@@ -42,7 +42,7 @@ class FixLatticeWall : public FixLatticeAtomHistory {
   // wall on the particles (it moves) and heat of its sliding contacts
   double work_tally() const { return work; }
   double heat_tally() const { return heat; }
-  void enable_tallies(int flag);
+  void enable_tallies(int flag) { tally_flag = flag; }
 
  protected:
   int dim;          // 0, 1, 2 for x, y, z

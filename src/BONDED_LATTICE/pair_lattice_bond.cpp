@@ -427,23 +427,23 @@ void PairLatticeBond::compute(int eflag, int vflag)
   if (!cand_i.empty()) detect_new_contacts();
 
   // energy tallies are compiled in only when compute lattice/energy asks for them
-  if (tally_flag) {
-    if (evflag) {
-      if (any_shear) eval<1, 1, 1>();
-      else eval<1, 0, 1>();
-    } else {
-      if (any_shear) eval<0, 1, 1>();
-      else eval<0, 0, 1>();
-    }
-  } else if (evflag) {
-    if (any_shear) eval<1, 1, 0>();
-    else eval<1, 0, 0>();
-  } else {
-    if (any_shear) eval<0, 1, 0>();
-    else eval<0, 0, 0>();
-  }
+  if (tally_flag) dispatch<1>();
+  else dispatch<0>();
 
   if (vflag_fdotr) virial_fdotr_compute();
+}
+
+/* ---------------------------------------------------------------------- */
+
+template <int TALLY> void PairLatticeBond::dispatch()
+{
+  if (evflag) {
+    if (any_shear) eval<1, 1, TALLY>();
+    else eval<1, 0, TALLY>();
+  } else {
+    if (any_shear) eval<0, 1, TALLY>();
+    else eval<0, 0, TALLY>();
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -500,8 +500,7 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
         b.state = LB_BROKEN_TENSION;
         state = LB_BROKEN_TENSION;
         if (TALLY) {
-          const double xp = prev_stretch(b, radi + radius[j]);
-          q_break_n += 0.25 * p.kn * (xp * xp + xn * xn);
+          q_break_n += normal_release(b, radi + radius[j], p.kn, xn);
           q_break_s += spring_release(b, p.ks, dx, dy, dz);
           b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
         }
@@ -525,10 +524,7 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
         b.state = LB_BROKEN_SHEAR;
         state = LB_BROKEN_SHEAR;
         if (xn >= 0.0) {
-          if (TALLY) {
-            const double xp = prev_stretch(b, radi + radius[j]);
-            q_break_n += 0.25 * p.kn * (xp * xp + xn * xn);
-          }
+          if (TALLY) q_break_n += normal_release(b, radi + radius[j], p.kn, xn);
           b.dx_prev[0] = dx;
           b.dx_prev[1] = dy;
           b.dx_prev[2] = dz;
@@ -579,10 +575,9 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
           if (xn >= 0.0) {
             // broken in shear while in tension: the contact is open
             if (TALLY) {
-              const double xp = prev_stretch(b, radi + radius[j]);
-              q_break_n += 0.25 * p.kn * (xp * xp + xn * xn);
-              q_break_s += 0.5 * p.ks *
-                  (s1x * tx + s1y * ty + s1z * tz + s1x * s1x + s1y * s1y + s1z * s1z);
+              const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, none[3] = {0.0, 0.0, 0.0};
+              q_break_n += normal_release(b, radi + radius[j], p.kn, xn);
+              q_break_s += shear_heat(p.ks, s1, t, none);
             }
             b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
             b.dx_prev[0] = dx;
@@ -597,9 +592,8 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
             sy *= scale;
             sz *= scale;
             if (TALLY) {
-              const double q = 0.5 * p.ks *
-                  ((s1x + sx) * tx + (s1y + sy) * ty + (s1z + sz) * tz - (sx * sx + sy * sy + sz * sz) +
-                   (s1x * s1x + s1y * s1y + s1z * s1z));
+              const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, s2[3] = {sx, sy, sz};
+              const double q = shear_heat(p.ks, s1, t, s2);
               if (broke_now) q_break_s += q;
               else q_friction += q;
             }
@@ -643,13 +637,28 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
 }
 
 /* ----------------------------------------------------------------------
-   normal stretch of a record at its last update (touch = ri + rj)
+   heat of a normal spring that breaks at stretch xn: Kn/4 (xp^2 + xn^2),
+   xp its stretch at the last update (touch = ri + rj)
 ------------------------------------------------------------------------- */
 
-double PairLatticeBond::prev_stretch(const LatticeBondRecord &b, double touch)
+double PairLatticeBond::normal_release(const LatticeBondRecord &b, double touch, double kn,
+                                       double xn)
 {
   const double *d = b.dx_prev;
-  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - touch;
+  const double xp = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - touch;
+  return 0.25 * kn * (xp * xp + xn * xn);
+}
+
+/* ----------------------------------------------------------------------
+   heat of a shear spring going from s1 through the increment t to s2:
+   Ks/2 [(s1 + s2).t - |s2|^2 + |s1|^2]
+------------------------------------------------------------------------- */
+
+double PairLatticeBond::shear_heat(double ks, const double *s1, const double *t, const double *s2)
+{
+  double q = 0.0;
+  for (int k = 0; k < 3; k++) q += (s1[k] + s2[k]) * t[k] - s2[k] * s2[k] + s1[k] * s1[k];
+  return 0.5 * ks * q;
 }
 
 /* ----------------------------------------------------------------------
@@ -662,11 +671,10 @@ double PairLatticeBond::spring_release(const LatticeBondRecord &b, double ks, do
                                        double dz)
 {
   const double *sh = b.shear;
-  const double s2 = sh[0] * sh[0] + sh[1] * sh[1] + sh[2] * sh[2];
-  if (s2 == 0.0) return 0.0;
-  const double ds = sh[0] * (dx - b.dx_prev[0]) + sh[1] * (dy - b.dx_prev[1]) +
-      sh[2] * (dz - b.dx_prev[2]);
-  return 0.5 * ks * (s2 + ds);
+  if (sh[0] == 0.0 && sh[1] == 0.0 && sh[2] == 0.0) return 0.0;
+  const double t[3] = {dx - b.dx_prev[0], dy - b.dx_prev[1], dz - b.dx_prev[2]};
+  const double none[3] = {0.0, 0.0, 0.0};
+  return shear_heat(ks, sh, t, none);
 }
 
 /* ----------------------------------------------------------------------

@@ -83,8 +83,11 @@ class PairLatticeBond : public Pair {
   void create_bonds();
   void refresh_partners();
   void detect_new_contacts();
+  template <int TALLY> void dispatch();
   template <int EVFLAG, int SHEAR, int TALLY> void eval();
-  static double prev_stretch(const struct LatticeBondRecord &, double touch);
+  static double normal_release(const struct LatticeBondRecord &, double touch, double kn,
+                               double xn);
+  static double shear_heat(double ks, const double *s1, const double *t, const double *s2);
   static double spring_release(const struct LatticeBondRecord &, double ks, double dx, double dy,
                                double dz);
 };
