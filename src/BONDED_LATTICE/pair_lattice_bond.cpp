@@ -39,7 +39,8 @@ static constexpr int DEFAULT_MAXSLOT = 16;
 PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
     Pair(lmp), params(nullptr), bondable(nullptr), coeff_set(nullptr),
     tolerance(DEFAULT_TOLERANCE), maxslot(DEFAULT_MAXSLOT), cut_user(0.0), cut_global(0.0),
-    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), any_shear(0), tally_flag(0)
+    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), shear_pairs(SHEAR_PAIRS_SOME),
+    any_friction(1), uniform_params(0), tally_flag(0)
 {
   heat[0] = heat[1] = heat[2] = 0.0;
   single_enable = 0;
@@ -189,15 +190,28 @@ void PairLatticeBond::init_style()
     atom->map_set();
   }
 
+  // which physics the type pairs use: the force loop is compiled for it
   const int nt = atom->ntypes;
-  any_shear = 0;
+  int n_shear = 0, n_pairs = 0;
+  any_friction = 0;
+  uniform_params = 1;
+  const BondParams &p11 = params[1][1];
   for (int i = 1; i <= nt; i++)
     for (int j = i; j <= nt; j++) {
       if (!coeff_set[i][j])
         error->all(FLERR, "pair_style lattice/bond: pair_coeff {} {} is missing; every type pair "
                    "needs Kn Ks Xb Fs0 mu_p", i, j);
-      if (params[i][j].ks > 0.0) any_shear = 1;
+      const BondParams &p = params[i][j];
+      n_pairs++;
+      if (p.ks > 0.0) n_shear++;
+      if (p.mu_p > 0.0) any_friction = 1;
+      if (p.kn != p11.kn || p.ks != p11.ks || p.xb != p11.xb || p.fs0 != p11.fs0 ||
+          p.mu_p != p11.mu_p)
+        uniform_params = 0;
     }
+  shear_pairs = (n_shear == 0) ? SHEAR_PAIRS_NONE
+      : (n_shear == n_pairs)   ? SHEAR_PAIRS_ALL
+                               : SHEAR_PAIRS_SOME;
 
   // cutoff: the longest bond that can exist (2 * largest radius, plus tolerance)
   double maxrad_local = 0.0, maxrad = 0.0;
@@ -426,30 +440,67 @@ void PairLatticeBond::compute(int eflag, int vflag)
   if (rebuilt) refresh_partners();
   if (!cand_i.empty()) detect_new_contacts();
 
-  // energy tallies are compiled in only when compute lattice/energy asks for them
-  if (tally_flag) dispatch<1>();
-  else dispatch<0>();
+  // each scene runs a force loop compiled for the physics it uses
+  const int features = scene_features();
+  (this->*EVAL_TABLE[features])();
 
   if (vflag_fdotr) virial_fdotr_compute();
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   compile-time features of the force loop for this step.  The specialised
+   loops skip work, never change arithmetic: every variant gives the same
+   forces to the last bit, so thermo output (which needs the energy/virial
+   variant) or an energy compute never perturbs a trajectory.  Steps that
+   tally energy or heat take the general loop.
+------------------------------------------------------------------------- */
 
-template <int TALLY> void PairLatticeBond::dispatch()
+int PairLatticeBond::scene_features() const
 {
-  if (evflag) {
-    if (any_shear) eval<1, 1, TALLY>();
-    else eval<1, 0, TALLY>();
-  } else {
-    if (any_shear) eval<0, 1, TALLY>();
-    else eval<0, 0, TALLY>();
-  }
+  if (evflag || tally_flag)
+    return LB_SHEAR_SOME | LB_FRICTION | (evflag ? LB_EV : 0) | (tally_flag ? LB_TALLY : 0);
+  int features = 0;
+  if (domain->dimension == 2) features |= LB_PLANAR;
+  if (uniform_params) features |= LB_UNIFORM;
+  if (shear_pairs == SHEAR_PAIRS_ALL) features |= LB_SHEAR_ALL;
+  else if (shear_pairs == SHEAR_PAIRS_SOME) features |= LB_SHEAR_SOME;
+  if (any_friction) features |= LB_FRICTION;
+  return features;
 }
 
+/* one entry per feature combination: steps with energy, virial or heat
+   tallies, and the combination that never occurs (both shear bits), use the
+   general loop */
+
+template <int F> constexpr PairLatticeBond::EvalFn PairLatticeBond::eval_entry()
+{
+  constexpr int GENERAL = LB_SHEAR_SOME | LB_FRICTION | (F & (LB_EV | LB_TALLY));
+  constexpr bool tallies = F & (LB_EV | LB_TALLY);
+  constexpr bool both_shear = (F & LB_SHEAR_ALL) && (F & LB_SHEAR_SOME);
+  if constexpr (tallies || both_shear) return &PairLatticeBond::eval<GENERAL>;
+  else return &PairLatticeBond::eval<F>;
+}
+
+template <std::size_t... I>
+constexpr std::array<PairLatticeBond::EvalFn, sizeof...(I)>
+PairLatticeBond::make_eval_table(std::index_sequence<I...>)
+{
+  return {eval_entry<static_cast<int>(I)>()...};
+}
+
+const std::array<PairLatticeBond::EvalFn, PairLatticeBond::LB_NFEATURES>
+    PairLatticeBond::EVAL_TABLE =
+        PairLatticeBond::make_eval_table(std::make_index_sequence<LB_NFEATURES>{});
+
 /* ----------------------------------------------------------------------
-   the force loop over records (REFERENCE.md, "Model")
-   EVFLAG: tally energy/virial; SHEAR: some type pair has Ks > 0;
-   TALLY: accumulate breaking and frictional heat (compute lattice/energy).
+   the force loop over records (REFERENCE.md, "Model"), compiled per feature
+   set F (see scene_features):
+   LB_EV: tally energy/virial; LB_TALLY: accumulate breaking and frictional
+   heat (compute lattice/energy); LB_PLANAR: 2D, no z components;
+   LB_UNIFORM: one parameter set for all type pairs; LB_SHEAR_ALL / _SOME:
+   every / some type pair has Ks > 0 (neither: no shear springs);
+   LB_FRICTION: some type pair has mu_p > 0 (without it broken bonds and
+   contacts are frictionless and carry no shear spring).
 
    Heat is the energy a record's springs lose other than by doing work on the
    particles, with the work over a step taken by the trapezoidal rule, which is
@@ -462,14 +513,24 @@ template <int TALLY> void PairLatticeBond::dispatch()
    Kn/4 (xp^2 + xn^2): its energy minus the work it does during that step.
 ------------------------------------------------------------------------- */
 
-template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
+template <int F> void PairLatticeBond::eval()
 {
-  const double *const *const x = atom->x;
-  double *const *const f = atom->f;
+  constexpr bool EVFLAG = F & LB_EV;
+  constexpr bool TALLY = F & LB_TALLY;
+  constexpr bool PLANAR = F & LB_PLANAR;
+  constexpr bool UNIFORM = F & LB_UNIFORM;
+  constexpr bool SHEAR = F & (LB_SHEAR_ALL | LB_SHEAR_SOME);
+  constexpr bool SHEAR_ALL = F & LB_SHEAR_ALL;
+  constexpr bool FRICTION = F & LB_FRICTION;
+
+  // LAMMPS keeps x and f contiguous: index them as arrays of triples
+  const auto *const x = reinterpret_cast<const double(*)[3]>(atom->x[0]);
+  auto *const f = reinterpret_cast<double(*)[3]>(atom->f[0]);
   const double *const radius = atom->radius;
   const int *const type = atom->type;
   const int nlocal = atom->nlocal;
   const int *const nrec = fix_store->nrec;
+  const BondParams p_uniform = params[1][1];
   double q_break_n = 0.0, q_break_s = 0.0, q_friction = 0.0;
 
   for (int i = 0; i < nlocal; i++) {
@@ -477,7 +538,7 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
     if (!nr) continue;
     LatticeBondRecord *__restrict r = fix_store->records(i);
     const int *__restrict idx = partner_idx + (bigint) i * maxslot;
-    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double xi = x[i][0], yi = x[i][1], zi = PLANAR ? 0.0 : x[i][2];
     const double radi = radius[i];
     const BondParams *prow = params[type[i]];
     double fxi = 0.0, fyi = 0.0, fzi = 0.0;    // summed here: fewer stores in the loop
@@ -486,12 +547,13 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
       const int j = idx[s];
       if (j < 0) continue;    // broken bond whose partner is far away
       LatticeBondRecord &b = r[s];
-      const BondParams &p = prow[type[j]];
+      const BondParams &p = UNIFORM ? p_uniform : prow[type[j]];
+      const bool has_shear = SHEAR && (SHEAR_ALL || p.ks > 0.0);
 
-      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = PLANAR ? 0.0 : zi - x[j][2];
       const double rr = sqrt(dx * dx + dy * dy + dz * dz);
       const double rinv = 1.0 / rr;
-      const double nx = dx * rinv, ny = dy * rinv, nz = dz * rinv;
+      const double nx = dx * rinv, ny = dy * rinv, nz = PLANAR ? 0.0 : dz * rinv;
       const double xn = rr - (radi + radius[j]);    // normal stretch, tension positive
 
       int state = b.state;
@@ -518,7 +580,7 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
       const double fn = p.kn * xn;    // normal force, tension positive
       double fsx = 0.0, fsy = 0.0, fsz = 0.0, es = 0.0;
 
-      if (state == LB_INTACT && !(SHEAR && p.ks > 0.0) && p.fs0 - p.mu_p * fn < 0.0) {
+      if (state == LB_INTACT && !has_shear && p.fs0 - p.mu_p * fn < 0.0) {
         // no shear spring: the bond fails in shear only when its Coulomb
         // limit itself becomes negative (tension above Fs0/mu_p)
         b.state = LB_BROKEN_SHEAR;
@@ -532,8 +594,9 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
         }
       }
 
-      if (SHEAR && p.ks > 0.0) {
-        double sx = b.shear[0], sy = b.shear[1], sz = b.shear[2];
+      // a frictionless contact (closed, mu_p = 0 everywhere) has no shear spring
+      if (has_shear && (FRICTION || state == LB_INTACT)) {
+        double sx = b.shear[0], sy = b.shear[1], sz = PLANAR ? 0.0 : b.shear[2];
         // rotate the spring into the new tangent plane: drop its normal part;
         // restoring its length matters only when the pair turned noticeably
         // in one step (relative change sn^2/|s|^2 > 1e-12), so test first
@@ -541,7 +604,7 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
         const double old2 = sx * sx + sy * sy + sz * sz;
         sx -= sn * nx;
         sy -= sn * ny;
-        sz -= sn * nz;
+        if (!PLANAR) sz -= sn * nz;
         if (sn * sn > 1.0e-12 * old2) {
           const double new2 = sx * sx + sy * sy + sz * sz;
           if (new2 > 0.0) {
@@ -552,9 +615,10 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
           }
         }
         // add the tangential part of this step's relative displacement
-        const double ddx = dx - b.dx_prev[0], ddy = dy - b.dx_prev[1], ddz = dz - b.dx_prev[2];
+        const double ddx = dx - b.dx_prev[0], ddy = dy - b.dx_prev[1];
+        const double ddz = PLANAR ? 0.0 : dz - b.dx_prev[2];
         const double dn = ddx * nx + ddy * ny + ddz * nz;
-        const double tx = ddx - dn * nx, ty = ddy - dn * ny, tz = ddz - dn * nz;
+        const double tx = ddx - dn * nx, ty = ddy - dn * ny, tz = PLANAR ? 0.0 : ddz - dn * nz;
         const double s1x = sx, s1y = sy, s1z = sz;    // rotated old spring (for the heat)
         sx += tx;
         sy += ty;
@@ -585,18 +649,22 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
             b.dx_prev[2] = dz;
             continue;
           }
-          const double limit = -p.mu_p * fn;    // sliding friction of a contact
-          if (fs2 > limit * limit) {
-            const double scale = (s2 > 0.0) ? limit / (p.ks * sqrt(s2)) : 0.0;
-            sx *= scale;
-            sy *= scale;
-            sz *= scale;
-            if (TALLY) {
-              const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, s2[3] = {sx, sy, sz};
-              const double q = shear_heat(p.ks, s1, t, s2);
-              if (broke_now) q_break_s += q;
-              else q_friction += q;
+          if (FRICTION) {
+            const double limit = -p.mu_p * fn;    // sliding friction of a contact
+            if (fs2 > limit * limit) {
+              const double scale = (s2 > 0.0) ? limit / (p.ks * sqrt(s2)) : 0.0;
+              sx *= scale;
+              sy *= scale;
+              sz *= scale;
+              if (TALLY) {
+                const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, s2[3] = {sx, sy, sz};
+                const double q = shear_heat(p.ks, s1, t, s2);
+                if (broke_now) q_break_s += q;
+                else q_friction += q;
+              }
             }
+          } else {
+            sx = sy = sz = 0.0;    // broke in shear just now: a frictionless contact
           }
         }
         b.shear[0] = sx;
@@ -604,21 +672,26 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
         b.shear[2] = sz;
         fsx = -p.ks * sx;
         fsy = -p.ks * sy;
-        fsz = -p.ks * sz;
+        fsz = PLANAR ? 0.0 : -p.ks * sz;
         if (EVFLAG) es = 0.5 * p.ks * (sx * sx + sy * sy + sz * sz);
+      } else if (has_shear) {
+        b.shear[0] = b.shear[1] = b.shear[2] = 0.0;    // a frictionless closed contact
       }
       b.dx_prev[0] = dx;
       b.dx_prev[1] = dy;
       b.dx_prev[2] = dz;
 
       // force on the owner i; the partner gets the opposite
-      const double fx = -fn * nx + fsx, fy = -fn * ny + fsy, fz = -fn * nz + fsz;
+      const double fx = -fn * nx + fsx, fy = -fn * ny + fsy;
+      const double fz = PLANAR ? 0.0 : -fn * nz + fsz;
       fxi += fx;
       fyi += fy;
-      fzi += fz;
       f[j][0] -= fx;
       f[j][1] -= fy;
-      f[j][2] -= fz;
+      if (!PLANAR) {
+        fzi += fz;
+        f[j][2] -= fz;
+      }
 
       if (EVFLAG) {
         const double e = eflag_either ? 0.5 * fn * xn + es : 0.0;
@@ -627,7 +700,7 @@ template <int EVFLAG, int SHEAR, int TALLY> void PairLatticeBond::eval()
     }
     f[i][0] += fxi;
     f[i][1] += fyi;
-    f[i][2] += fzi;
+    if (!PLANAR) f[i][2] += fzi;
   }
   if (TALLY) {
     heat[0] += q_break_n;

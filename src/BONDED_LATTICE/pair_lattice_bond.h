@@ -19,7 +19,9 @@ PairStyle(lattice/bond,PairLatticeBond);
 
 #include "pair.h"
 
+#include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -74,7 +76,11 @@ class PairLatticeBond : public Pair {
   int *partner_idx;    // local index of each record's partner, refreshed after reneighbouring
   int partner_nmax;
   std::vector<int> cand_i, cand_j;    // unbonded pairs that may come into contact
-  int any_shear;                      // 1 if some type pair has Ks > 0
+  // physics used by the type pairs (init_style): selects the compiled force loop
+  enum { SHEAR_PAIRS_NONE, SHEAR_PAIRS_SOME, SHEAR_PAIRS_ALL };
+  int shear_pairs;                    // how many type pairs have Ks > 0
+  int any_friction;                   // 1 if some type pair has mu_p > 0
+  int uniform_params;                 // 1 if all type pairs have the same parameters
   int tally_flag;                     // 1: accumulate heat (compute lattice/energy)
   double heat[3];                     // see heat_tallies()
 
@@ -83,8 +89,24 @@ class PairLatticeBond : public Pair {
   void create_bonds();
   void refresh_partners();
   void detect_new_contacts();
-  template <int TALLY> void dispatch();
-  template <int EVFLAG, int SHEAR, int TALLY> void eval();
+  // compile-time features of the force loop (bits of its template argument)
+  enum EvalFeature {
+    LB_EV = 1,            // energy / virial tallies (thermo steps)
+    LB_TALLY = 2,         // heat tallies of compute lattice/energy
+    LB_PLANAR = 4,        // 2D: no z components
+    LB_UNIFORM = 8,       // one parameter set for every type pair
+    LB_SHEAR_ALL = 16,    // every type pair has a shear spring
+    LB_SHEAR_SOME = 32,   // some type pairs have one (tested per record)
+    LB_FRICTION = 64,     // some type pair has contact friction
+    LB_NFEATURES = 128
+  };
+  using EvalFn = void (PairLatticeBond::*)();
+  int scene_features() const;
+  template <int F> void eval();
+  template <int F> static constexpr EvalFn eval_entry();
+  template <std::size_t... I>
+  static constexpr std::array<EvalFn, sizeof...(I)> make_eval_table(std::index_sequence<I...>);
+  static const std::array<EvalFn, LB_NFEATURES> EVAL_TABLE;
   static double normal_release(const struct LatticeBondRecord &, double touch, double kn,
                                double xn);
   static double shear_heat(double ks, const double *s1, const double *t, const double *s2);
