@@ -157,3 +157,21 @@ def test_write_data_warns_and_keeps_coefficients(tmp_path):
     section = text.split("PairIJ Coeffs")[1].splitlines()
     coeffs = next(line for line in section if line.startswith("1 1 ")).split()
     assert [float(v) for v in coeffs[2:]] == [6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915]
+
+
+def test_restart_of_the_first_record_format_is_rejected(tmp_path):
+    """A restart file whose records carry the old per-bond separation (format 1,
+    written by the first versions; tests/data holds one) is refused with a
+    message that says why and what to do, instead of being misread."""
+    data = ROOT / "tests" / "data" / "lattice_bond_format1.restart"
+    deck = f"""
+read_restart    {data}
+pair_coeff      1 1 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915
+fix             nve all nve
+run             1
+"""
+    result = run_deck(deck, tmp_path)
+    assert result.returncode != 0
+    assert "format 1" in result.output and "older BONDED_LATTICE version" in result.output, \
+        result.output[-1500:]
+    assert "Rerun the model from its data file" in result.output

@@ -84,7 +84,7 @@ void ComputeLatticeBonds::compute_vector()
     double **x = atom->x;
     const double *radius = atom->radius;
     const int *mask = atom->mask;
-    const int maxslot = store->maxslot;
+    const int stride = pair->partner_index_stride();
     for (int i = 0; i < atom->nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
       const LatticeBondRecord *r = store->records(i);
@@ -97,7 +97,7 @@ void ComputeLatticeBonds::compute_vector()
         if (state == LB_BROKEN_TENSION) local[1] += 1.0;
         else if (state == LB_BROKEN_SHEAR) local[2] += 1.0;
         // a broken bond or unbonded pair is an active contact while it overlaps
-        const int j = idx[(bigint) i * maxslot + s];
+        const int j = idx[(bigint) i * stride + s];
         if (j < 0) continue;
         const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
         const double touch = radius[i] + radius[j];
@@ -125,13 +125,13 @@ void ComputeLatticeBonds::compute_peratom()
   FixLatticeBondStore *store = pair->store();
   const int *idx = pair->partner_index();
   if (store && idx) {
-    const int maxslot = store->maxslot;
+    const int stride = pair->partner_index_stride();
     for (int i = 0; i < atom->nlocal; i++) {
       const LatticeBondRecord *r = store->records(i);
       for (int s = 0; s < store->nrec[i]; s++) {
         if (r[s].state != peratom_state) continue;
         intact_per_atom[i] += 1.0;
-        const int j = idx[(bigint) i * maxslot + s];
+        const int j = idx[(bigint) i * stride + s];
         if (j >= 0) intact_per_atom[j] += 1.0;
       }
     }

@@ -114,9 +114,3 @@ double FixLatticeAtomHistory::memory_usage()
   return (double) atom->nmax * nvalues * sizeof(double);
 }
 
-/* ---------------------------------------------------------------------- */
-
-void FixLatticeAtomHistory::unwrap_step_triclinic(double *d) const
-{
-  domain->minimum_image(FLERR, d);
-}

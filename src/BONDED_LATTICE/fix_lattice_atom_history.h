@@ -16,6 +16,24 @@
 
 namespace LAMMPS_NS {
 
+// remove a periodic jump from a one-step displacement d.  Per atom and step
+// Domain::minimum_image is costly here: its FLERR argument becomes a
+// std::string that allocates on every call (about a third of a 2D
+// compression run's instructions); orthogonal boxes take the direct test
+inline void lattice_unwrap_step(Domain *domain, double *d)
+{
+  if (domain->triclinic) {
+    domain->minimum_image(FLERR, d);
+    return;
+  }
+  if (domain->xperiodic && std::fabs(d[0]) > 0.5 * domain->xprd)
+    d[0] -= std::copysign(domain->xprd, d[0]);
+  if (domain->yperiodic && std::fabs(d[1]) > 0.5 * domain->yprd)
+    d[1] -= std::copysign(domain->yprd, d[1]);
+  if (domain->zperiodic && std::fabs(d[2]) > 0.5 * domain->zprd)
+    d[2] -= std::copysign(domain->zprd, d[2]);
+}
+
 class FixLatticeAtomHistory : public Fix {
  public:
   FixLatticeAtomHistory(class LAMMPS *, int, char **);
@@ -39,24 +57,8 @@ class FixLatticeAtomHistory : public Fix {
   // initialises the local atoms with set_arrays()
   void create_history(int n);
 
-  // remove a periodic jump from a one-step displacement.  Per atom and step
-  // Domain::minimum_image is costly here: its FLERR argument becomes a
-  // std::string that allocates on every call (about a third of a 2D
-  // compression run's instructions); orthogonal boxes take the direct test
-  void unwrap_step(double *d) const
-  {
-    if (domain->triclinic) {
-      unwrap_step_triclinic(d);
-      return;
-    }
-    if (domain->xperiodic && std::fabs(d[0]) > 0.5 * domain->xprd)
-      d[0] -= std::copysign(domain->xprd, d[0]);
-    if (domain->yperiodic && std::fabs(d[1]) > 0.5 * domain->yprd)
-      d[1] -= std::copysign(domain->yprd, d[1]);
-    if (domain->zperiodic && std::fabs(d[2]) > 0.5 * domain->zprd)
-      d[2] -= std::copysign(domain->zprd, d[2]);
-  }
-  void unwrap_step_triclinic(double *d) const;
+  // remove a periodic jump from a one-step displacement (see lattice_unwrap_step)
+  void unwrap_step(double *d) const { lattice_unwrap_step(domain, d); }
 };
 
 }    // namespace LAMMPS_NS

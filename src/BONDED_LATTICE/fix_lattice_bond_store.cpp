@@ -4,16 +4,23 @@
 
    The fix is created by pair_style lattice/bond at the first run.  It keeps
    the records with their atoms when atoms migrate between ranks, are sorted,
-   or are written to and read from restart files.
+   or are written to and read from restart files.  Memory follows need: each
+   atom has room for `capacity` records, which starts small and grows (up to
+   maxslot) when an atom needs more; the pair style fits it to the largest
+   count after creating the bonds.  It also keeps each atom's position at the
+   last force evaluation, from which the step's displacements follow.
 ------------------------------------------------------------------------- */
 
 #include "fix_lattice_bond_store.h"
 
 #include "atom.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
+#include "fix_lattice_atom_history.h"
 #include "memory.h"
 
+#include <algorithm>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -21,22 +28,27 @@ using namespace FixConst;
 
 /* ---------------------------------------------------------------------- */
 
+static constexpr int INITIAL_CAPACITY = 4;
+static constexpr int CAPACITY_STEP = 2;    // small steps: memory follows need
+
 FixLatticeBondStore::FixLatticeBondStore(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), nrec(nullptr), rec(nullptr), bonds_created(0), nmax_store(0)
+    Fix(lmp, narg, arg), nrec(nullptr), rec(nullptr), xlast(nullptr), disp(nullptr),
+    bonds_created(0), nmax_store(0)
 {
   if (narg != 4) error->all(FLERR, "Illegal fix {} command: expected one argument (maxslot)", style);
   maxslot = utils::inumeric(FLERR, arg[3], false, lmp);
   if (maxslot < 1) error->all(FLERR, "Fix {} maxslot {} must be >= 1", style, maxslot);
+  capacity = std::min(maxslot, INITIAL_CAPACITY);
 
   restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
-  maxexchange = 1 + maxslot * RECORD_DOUBLES;
+  maxexchange = ATOM_DOUBLES + maxslot * RECORD_DOUBLES;
 
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
-  for (int i = 0; i < atom->nmax; i++) nrec[i] = 0;
+  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -47,6 +59,8 @@ FixLatticeBondStore::~FixLatticeBondStore()
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(nrec);
   memory->sfree(rec);
+  memory->destroy(xlast);
+  memory->destroy(disp);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -60,11 +74,14 @@ int FixLatticeBondStore::setmask()
 
 LatticeBondRecord *FixLatticeBondStore::add_record(int i)
 {
-  if (nrec[i] >= maxslot)
-    error->one(FLERR,
-               "Atom {} has more than maxslot = {} bonds and contacts; "
-               "increase the pair_style lattice/bond keyword maxslot",
-               atom->tag[i], maxslot);
+  if (nrec[i] >= capacity) {
+    if (nrec[i] >= maxslot)
+      error->one(FLERR,
+                 "Atom {} has more than maxslot = {} bonds and contacts; "
+                 "increase the pair_style lattice/bond keyword maxslot",
+                 atom->tag[i], maxslot);
+    set_capacity(std::min(maxslot, capacity + CAPACITY_STEP));
+  }
   LatticeBondRecord *r = records(i) + nrec[i]++;
   std::memset(r, 0, sizeof(LatticeBondRecord));
   return r;
@@ -79,12 +96,82 @@ void FixLatticeBondStore::remove_record(int i, int slot)
   if (slot != last) r[slot] = r[last];
 }
 
+/* ----------------------------------------------------------------------
+   lay the records out with room for n per atom (n >= every atom's count)
+------------------------------------------------------------------------- */
+
+void FixLatticeBondStore::set_capacity(int n)
+{
+  if (n == capacity) return;
+  auto *fresh = (LatticeBondRecord *) memory->smalloc(
+      (bigint) nmax_store * n * sizeof(LatticeBondRecord), "lattice/bond/store:rec");
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++)
+    if (nrec[i]) std::memcpy(fresh + (bigint) i * n, records(i), nrec[i] * sizeof(LatticeBondRecord));
+  memory->sfree(rec);
+  rec = fresh;
+  capacity = n;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeBondStore::fit_capacity(int n)
+{
+  set_capacity(std::min(maxslot, std::max({n, local_max_records(), 1})));
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeBondStore::local_max_records() const
+{
+  int most = 0;
+  for (int i = 0; i < atom->nlocal; i++) most = std::max(most, nrec[i]);
+  return most;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeBondStore::set_maxslot(int n)
+{
+  int most = local_max_records(), most_all = 0;
+  MPI_Allreduce(&most, &most_all, 1, MPI_INT, MPI_MAX, world);
+  if (most_all > n)
+    error->all(FLERR, "pair_style lattice/bond maxslot {} is too small: an atom holds {} bonds "
+               "and contacts; use maxslot >= {}", n, most_all, most_all);
+  maxslot = n;
+  maxexchange = ATOM_DOUBLES + maxslot * RECORD_DOUBLES;
+  if (capacity > maxslot) set_capacity(maxslot);
+}
+
+/* ----------------------------------------------------------------------
+   each local atom's displacement since the last force evaluation, with
+   periodic jumps removed; the pair style sends it to the ghosts
+------------------------------------------------------------------------- */
+
+void FixLatticeBondStore::update_displacements()
+{
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++) {
+    double d[3] = {x[i][0] - xlast[i][0], x[i][1] - xlast[i][1], x[i][2] - xlast[i][2]};
+    lattice_unwrap_step(domain, d);
+    for (int k = 0; k < 3; k++) {
+      disp[i][k] = d[k];
+      xlast[i][k] = x[i][k];
+    }
+  }
+}
+
 /* ---------------------------------------------------------------------- */
 
 void FixLatticeBondStore::grow_arrays(int nmax)
 {
   memory->grow(nrec, nmax, "lattice/bond/store:nrec");
-  rec = (LatticeBondRecord *) memory->srealloc(rec, (bigint) nmax * maxslot * sizeof(LatticeBondRecord),
+  // atoms not yet filled (read_restart unpacks them one by one) hold no records
+  for (int i = nmax_store; i < nmax; i++) nrec[i] = 0;
+  memory->grow(xlast, nmax, 3, "lattice/bond/store:xlast");
+  memory->grow(disp, nmax, 3, "lattice/bond/store:disp");
+  rec = (LatticeBondRecord *) memory->srealloc(rec, (bigint) nmax * capacity * sizeof(LatticeBondRecord),
                                                "lattice/bond/store:rec");
   nmax_store = nmax;
 }
@@ -95,29 +182,39 @@ void FixLatticeBondStore::copy_arrays(int i, int j, int /*delflag*/)
 {
   nrec[j] = nrec[i];
   if (nrec[i]) std::memcpy(records(j), records(i), nrec[i] * sizeof(LatticeBondRecord));
+  for (int k = 0; k < 3; k++) {
+    xlast[j][k] = xlast[i][k];
+    disp[j][k] = disp[i][k];
+  }
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   a new atom: no records, at rest since the last force evaluation
+------------------------------------------------------------------------- */
 
 void FixLatticeBondStore::set_arrays(int i)
 {
   nrec[i] = 0;
+  for (int k = 0; k < 3; k++) {
+    xlast[i][k] = atom->x[i][k];
+    disp[i][k] = 0.0;
+  }
 }
 
 /* ----------------------------------------------------------------------
-   one atom's records as doubles: count, then 8 values per record
+   one atom as doubles: record count, last position, then 5 values per record
 ------------------------------------------------------------------------- */
 
 int FixLatticeBondStore::pack_atom(int i, double *buf) const
 {
   int m = 0;
   buf[m++] = ubuf(nrec[i]).d;
+  for (int k = 0; k < 3; k++) buf[m++] = xlast[i][k];
   const LatticeBondRecord *r = records(i);
   for (int s = 0; s < nrec[i]; s++) {
     buf[m++] = ubuf(r[s].partner).d;
     buf[m++] = ubuf(r[s].state).d;
     for (int k = 0; k < 3; k++) buf[m++] = r[s].shear[k];
-    for (int k = 0; k < 3; k++) buf[m++] = r[s].dx_prev[k];
   }
   return m;
 }
@@ -128,18 +225,22 @@ int FixLatticeBondStore::unpack_atom(int i, const double *buf)
 {
   int m = 0;
   const int n = (int) ubuf(buf[m++]).i;
-  if (n > maxslot)
+  if (n < 0 || n > maxslot)
     error->one(FLERR,
                "Atom {} carries {} bond records but maxslot is {}; use a pair_style "
                "lattice/bond maxslot of at least {}",
                atom->tag[i], n, maxslot, n);
+  if (n > capacity) set_capacity(std::min(maxslot, n + CAPACITY_STEP));
   nrec[i] = n;
+  for (int k = 0; k < 3; k++) {
+    xlast[i][k] = buf[m++];
+    disp[i][k] = 0.0;
+  }
   LatticeBondRecord *r = records(i);
   for (int s = 0; s < n; s++) {
     r[s].partner = (tagint) ubuf(buf[m++]).i;
     r[s].state = (int) ubuf(buf[m++]).i;
     for (int k = 0; k < 3; k++) r[s].shear[k] = buf[m++];
-    for (int k = 0; k < 3; k++) r[s].dx_prev[k] = buf[m++];
   }
   return m;
 }
@@ -184,25 +285,29 @@ void FixLatticeBondStore::unpack_restart(int nlocal, int nth)
 
 int FixLatticeBondStore::size_restart(int i)
 {
-  return 2 + nrec[i] * RECORD_DOUBLES;
+  return 1 + ATOM_DOUBLES + nrec[i] * RECORD_DOUBLES;
 }
 
 /* ---------------------------------------------------------------------- */
 
 int FixLatticeBondStore::maxsize_restart()
 {
-  return 2 + maxslot * RECORD_DOUBLES;
+  return 1 + ATOM_DOUBLES + maxslot * RECORD_DOUBLES;
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   global part: format, whether the bonds exist, maxslot.  Files of the first
+   format (records with the old separation) start with the bonds_created flag,
+   0 or 1, and are rejected
+------------------------------------------------------------------------- */
 
 void FixLatticeBondStore::write_restart(FILE *fp)
 {
   if (comm->me == 0) {
-    double list[2] = {(double) bonds_created, (double) maxslot};
+    double list[3] = {(double) RESTART_FORMAT, (double) bonds_created, (double) maxslot};
     int size = sizeof(list);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), 2, fp);
+    fwrite(list, sizeof(double), 3, fp);
   }
 }
 
@@ -211,12 +316,19 @@ void FixLatticeBondStore::write_restart(FILE *fp)
 void FixLatticeBondStore::restart(char *buf)
 {
   auto list = (double *) buf;
-  bonds_created = static_cast<int>(list[0]);
+  if (static_cast<int>(list[0]) != RESTART_FORMAT)
+    error->all(FLERR, "This restart file holds pair_style lattice/bond records in format {} "
+               "(an older BONDED_LATTICE version); this version reads format {}. Rerun the "
+               "model from its data file, or write the restart again with the version that "
+               "made it", static_cast<int>(list[0]) < 2 ? 1 : static_cast<int>(list[0]),
+               RESTART_FORMAT);
+  bonds_created = static_cast<int>(list[1]);
 }
 
 /* ---------------------------------------------------------------------- */
 
 double FixLatticeBondStore::memory_usage()
 {
-  return (double) nmax_store * (sizeof(int) + (double) maxslot * sizeof(LatticeBondRecord));
+  return (double) nmax_store *
+      (sizeof(int) + 6 * sizeof(double) + (double) capacity * sizeof(LatticeBondRecord));
 }

@@ -18,10 +18,11 @@ namespace LAMMPS_NS {
 
 // One bond or contact between two particles.  It is stored once, on the
 // particle with the lower tag ("owner"); only the rank owning that particle
-// updates it, so ranks can never disagree about whether a bond broke.
+// updates it, so ranks can never disagree about whether a bond broke.  The
+// step's relative displacement comes from the two particles' displacements
+// (FixLatticeBondStore::disp), so a record keeps no old separation.
 struct LatticeBondRecord {
   double shear[3];      // shear-spring displacement; force on the owner is -Ks*shear
-  double dx_prev[3];    // owner-minus-partner separation at the last update
   tagint partner;       // tag of the higher-tag particle
   int state;            // one of LatticeBondState
 };
@@ -47,19 +48,29 @@ class FixLatticeBondStore : public Fix {
   void restart(char *) override;
   double memory_usage() override;
 
-  // records of atom i are rec[i*maxslot .. i*maxslot + nrec[i] - 1]
-  LatticeBondRecord *records(int i) const { return rec + (bigint) i * maxslot; }
-  LatticeBondRecord *add_record(int i);    // error if atom i is full
+  // records of atom i are rec[i*capacity .. i*capacity + nrec[i] - 1]
+  LatticeBondRecord *records(int i) const { return rec + (bigint) i * capacity; }
+  LatticeBondRecord *add_record(int i);    // grows the capacity; error beyond maxslot
   void remove_record(int i, int slot);     // swap-with-last removal
+  void set_maxslot(int n);                 // new limit; error if an atom holds more
+  void fit_capacity(int n);                // capacity = max(n, every atom's count) <= maxslot
+  int local_max_records() const;
+  void update_displacements();             // disp = x - xlast, xlast = x (local atoms)
 
-  int maxslot;           // capacity per atom
+  int maxslot;           // most records an atom may hold (pair_style keyword)
+  int capacity;          // records stored per atom now: grows on demand up to maxslot
   int *nrec;             // number of records per atom
   LatticeBondRecord *rec;
+  double **xlast;        // position at the last force evaluation (local atoms)
+  double **disp;         // displacement since then (local atoms; ghosts by forward comm)
   int bonds_created;     // 1 once the initial bonds exist; never reset (survives restart)
 
  private:
   int nmax_store;
-  static constexpr int RECORD_DOUBLES = 8;    // packed size of one record
+  static constexpr int RECORD_DOUBLES = 5;    // packed size of one record
+  static constexpr int ATOM_DOUBLES = 4;      // count + xlast
+  static constexpr int RESTART_FORMAT = 2;    // 1: records with the old separation
+  void set_capacity(int n);
   int pack_atom(int, double *) const;
   int unpack_atom(int, const double *);
 };

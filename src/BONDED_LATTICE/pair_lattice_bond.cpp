@@ -39,7 +39,7 @@ static constexpr int DEFAULT_MAXSLOT = 16;
 PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
     Pair(lmp), params(nullptr), bondable(nullptr), coeff_set(nullptr),
     tolerance(DEFAULT_TOLERANCE), maxslot(DEFAULT_MAXSLOT), cut_user(0.0), cut_global(0.0),
-    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), shear_pairs(SHEAR_PAIRS_SOME),
+    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), partner_stride(0), shear_pairs(SHEAR_PAIRS_SOME),
     any_friction(1), uniform_params(0), tally_flag(0)
 {
   heat[0] = heat[1] = heat[2] = 0.0;
@@ -48,6 +48,7 @@ PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
   writedata = 1;
   finitecutflag = 1;
   centroidstressflag = CENTROID_SAME;
+  comm_forward = 3;    // the particles' displacements since the last step, to the ghosts
   store_id = "LATTICE_BOND_STORE";
 }
 
@@ -110,9 +111,6 @@ void PairLatticeBond::settings(int narg, char **arg)
       if (n < 1 || n > 64)
         error->all(FLERR, "pair_style lattice/bond maxslot {} is out of range: need 1 <= maxslot <= 64",
                    n);
-      if (fix_store && n != maxslot)
-        error->all(FLERR, "pair_style lattice/bond maxslot cannot change after the first run "
-                   "(it is {}, requested {})", maxslot, n);
       maxslot = n;
     } else if (key == "cutoff") {
       cut_user = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
@@ -237,11 +235,11 @@ void PairLatticeBond::init_style()
     fix_store = dynamic_cast<FixLatticeBondStore *>(
         modify->add_fix(fmt::format("{} all LATTICE/BOND/STORE {}", store_id, maxslot)));
   if (!fix_store) error->all(FLERR, "pair_style lattice/bond could not create its record store");
-  if (fix_store->maxslot != maxslot)
-    error->all(FLERR, "pair_style lattice/bond maxslot {} differs from the stored records' {}",
-               maxslot, fix_store->maxslot);
+  if (fix_store->maxslot != maxslot) fix_store->set_maxslot(maxslot);
 
-  neighbor->add_request(this, NeighConst::REQ_FULL);
+  // a half list that holds each local-ghost pair on both ranks: the rank of
+  // the lower tag finds every pair it must own (half the memory of a full list)
+  neighbor->add_request(this, NeighConst::REQ_NEWTON_OFF);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -251,6 +249,27 @@ double PairLatticeBond::init_one(int i, int j)
   params[j][i] = params[i][j];
   bondable[j][i] = bondable[i][j];
   return cut_global;
+}
+
+/* ----------------------------------------------------------------------
+   a neighbour-list pair (a local, b local or ghost) seen from its owner:
+   i = the particle with the lower tag, j = its partner.  False if the owner
+   is a ghost: its own rank holds the pair as well and records it
+------------------------------------------------------------------------- */
+
+bool PairLatticeBond::owned_pair(int a, int b, int nlocal, const tagint *tag, int &i, int &j)
+{
+  if (tag[a] < tag[b]) {
+    i = a;
+    j = b;
+    return true;
+  }
+  if (b < nlocal && tag[b] < tag[a]) {
+    i = b;
+    j = a;
+    return true;
+  }
+  return false;
 }
 
 /* ----------------------------------------------------------------------
@@ -266,39 +285,63 @@ void PairLatticeBond::create_bonds()
   tagint *tag = atom->tag;
   const int nlocal = atom->nlocal;
 
+  // two passes over the pairs: count each owner's bonds (an upper bound: images
+  // of one partner in a small periodic box count twice), size the store for
+  // the most any atom has (no growth while bonding), then create them
+  std::vector<int> count(nlocal, 0);
   bigint nbond_local = 0;
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
-    if (i >= nlocal) continue;
-    const int *jlist = list->firstneigh[i];
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      if (tag[j] <= tag[i]) continue;
-      if (!bondable[type[i]][type[j]]) continue;
-      const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
-      const double reach = (radius[i] + radius[j]) * (1.0 + tolerance);
-      if (delx * delx + dely * dely + delz * delz >= reach * reach) continue;
-      // in a small periodic box two images of one partner may be in range
-      LatticeBondRecord *r = fix_store->records(i);
-      bool seen = false;
-      for (int s = 0; s < fix_store->nrec[i]; s++)
-        if (r[s].partner == tag[j]) seen = true;
-      if (seen) continue;
-      LatticeBondRecord *rec = fix_store->add_record(i);
-      rec->partner = tag[j];
-      rec->state = LB_INTACT;
-      rec->dx_prev[0] = delx;
-      rec->dx_prev[1] = dely;
-      rec->dx_prev[2] = delz;
-      nbond_local++;
+  for (int pass = 0; pass < 2; pass++) {
+    for (int ii = 0; ii < list->inum; ii++) {
+      const int a = list->ilist[ii];
+      if (a >= nlocal) continue;
+      const int *jlist = list->firstneigh[a];
+      for (int jj = 0; jj < list->numneigh[a]; jj++) {
+        int i, j;
+        if (!owned_pair(a, jlist[jj] & NEIGHMASK, nlocal, tag, i, j)) continue;
+        if (!bondable[type[i]][type[j]]) continue;
+        const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
+        const double reach = (radius[i] + radius[j]) * (1.0 + tolerance);
+        if (delx * delx + dely * dely + delz * delz >= reach * reach) continue;
+        if (pass == 0) {
+          count[i]++;
+          continue;
+        }
+        // in a small periodic box two images of one partner may be in range
+        LatticeBondRecord *r = fix_store->records(i);
+        bool seen = false;
+        for (int s = 0; s < fix_store->nrec[i]; s++)
+          if (r[s].partner == tag[j]) seen = true;
+        if (seen) continue;
+        LatticeBondRecord *rec = fix_store->add_record(i);
+        rec->partner = tag[j];
+        rec->state = LB_INTACT;
+        nbond_local++;
+      }
+    }
+    if (pass == 0) {
+      int most = 0, most_all = 0;
+      for (int i = 0; i < nlocal; i++) {
+        if (count[i] + fix_store->nrec[i] > fix_store->maxslot)
+          error->one(FLERR, "Atom {} has more than maxslot = {} bonds and contacts ({}); increase "
+                     "the pair_style lattice/bond keyword maxslot", tag[i], fix_store->maxslot,
+                     count[i] + fix_store->nrec[i]);
+        most = MAX(most, count[i] + fix_store->nrec[i]);
+      }
+      MPI_Allreduce(&most, &most_all, 1, MPI_INT, MPI_MAX, world);
+      fix_store->fit_capacity(most_all);
     }
   }
   bigint nbond = 0;
   MPI_Allreduce(&nbond_local, &nbond, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   fix_store->bonds_created = 1;
+  // the exact room: contacts add more when they need it
+  int most = fix_store->local_max_records(), most_all = 0;
+  MPI_Allreduce(&most, &most_all, 1, MPI_INT, MPI_MAX, world);
+  fix_store->fit_capacity(most_all);
   if (comm->me == 0)
-    utils::logmesg(lmp, "pair_style lattice/bond: created {} bonds between {} particles ({:.3f} per particle)\n",
-                   nbond, atom->natoms, atom->natoms ? 2.0 * nbond / atom->natoms : 0.0);
+    utils::logmesg(lmp, "pair_style lattice/bond: created {} bonds between {} particles (mean "
+                   "coordination {:.3f})\n", nbond, atom->natoms,
+                   atom->natoms ? 2.0 * nbond / atom->natoms : 0.0);
 }
 
 /* ----------------------------------------------------------------------
@@ -317,15 +360,16 @@ void PairLatticeBond::refresh_partners()
   const double cutghost = comm->get_comm_cutoff();
   const double cutghost_sq = cutghost * cutghost;
 
-  if (atom->nmax > partner_nmax) {
+  if (atom->nmax > partner_nmax || partner_stride != fix_store->capacity) {
     partner_nmax = atom->nmax;
+    partner_stride = fix_store->capacity;
     memory->destroy(partner_idx);
-    memory->create(partner_idx, (bigint) partner_nmax * maxslot, "pair:partner_idx");
+    memory->create(partner_idx, (bigint) partner_nmax * partner_stride, "pair:partner_idx");
   }
 
   for (int i = 0; i < nlocal; i++) {
     LatticeBondRecord *r = fix_store->records(i);
-    int *idx = partner_idx + (bigint) i * maxslot;
+    int *idx = partner_idx + (bigint) i * partner_stride;
     // walk downwards so that swap-with-last removal only moves visited records
     for (int s = fix_store->nrec[i] - 1; s >= 0; s--) {
       int j = atom->map(r[s].partner);
@@ -371,14 +415,14 @@ void PairLatticeBond::refresh_partners()
   cand_j.clear();
   const double skin = neighbor->skin;
   for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
-    if (i >= nlocal) continue;
-    const int *jlist = list->firstneigh[i];
-    const LatticeBondRecord *r = fix_store->records(i);
-    const int nr = fix_store->nrec[i];
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      if (tag[j] <= tag[i]) continue;
+    const int a = list->ilist[ii];
+    if (a >= nlocal) continue;
+    const int *jlist = list->firstneigh[a];
+    for (int jj = 0; jj < list->numneigh[a]; jj++) {
+      int i, j;
+      if (!owned_pair(a, jlist[jj] & NEIGHMASK, nlocal, tag, i, j)) continue;
+      const LatticeBondRecord *r = fix_store->records(i);
+      const int nr = fix_store->nrec[i];
       const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
       const double reach = radius[i] + radius[j] + skin;
       if (delx * delx + dely * dely + delz * delz >= reach * reach) continue;
@@ -412,10 +456,8 @@ void PairLatticeBond::detect_new_contacts()
       LatticeBondRecord *rec = fix_store->add_record(i);
       rec->partner = tag[j];
       rec->state = LB_CONTACT;
-      rec->dx_prev[0] = delx;
-      rec->dx_prev[1] = dely;
-      rec->dx_prev[2] = delz;
-      partner_idx[(bigint) i * maxslot + s] = j;
+      if (fix_store->capacity != partner_stride) relayout_partners();
+      partner_idx[(bigint) i * partner_stride + s] = j;
       cand_i[c] = cand_i.back();
       cand_j[c] = cand_j.back();
       cand_i.pop_back();
@@ -424,6 +466,25 @@ void PairLatticeBond::detect_new_contacts()
       c++;
     }
   }
+}
+
+/* ----------------------------------------------------------------------
+   the record store grew: the same partner indices with the new stride
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::relayout_partners()
+{
+  const int stride = fix_store->capacity;
+  int *fresh = nullptr;
+  memory->create(fresh, (bigint) partner_nmax * stride, "pair:partner_idx");
+  const int nlocal = atom->nlocal;
+  const int keep = MIN(stride, partner_stride);
+  for (int i = 0; i < nlocal; i++)
+    for (int s = 0; s < keep; s++)
+      fresh[(bigint) i * stride + s] = partner_idx[(bigint) i * partner_stride + s];
+  memory->destroy(partner_idx);
+  partner_idx = fresh;
+  partner_stride = stride;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -439,6 +500,10 @@ void PairLatticeBond::compute(int eflag, int vflag)
   }
   if (rebuilt) refresh_partners();
   if (!cand_i.empty()) detect_new_contacts();
+
+  // each particle's displacement over this step, ghosts included
+  fix_store->update_displacements();
+  comm->forward_comm(this);
 
   // each scene runs a force loop compiled for the physics it uses
   const int features = scene_features();
@@ -530,6 +595,8 @@ template <int F> void PairLatticeBond::eval()
   const int *const type = atom->type;
   const int nlocal = atom->nlocal;
   const int *const nrec = fix_store->nrec;
+  const auto *const disp = reinterpret_cast<const double(*)[3]>(fix_store->disp[0]);
+  const int stride = partner_stride;
   const BondParams p_uniform = params[1][1];
   double q_break_n = 0.0, q_break_s = 0.0, q_friction = 0.0;
 
@@ -537,8 +604,9 @@ template <int F> void PairLatticeBond::eval()
     const int nr = nrec[i];
     if (!nr) continue;
     LatticeBondRecord *__restrict r = fix_store->records(i);
-    const int *__restrict idx = partner_idx + (bigint) i * maxslot;
+    const int *__restrict idx = partner_idx + (bigint) i * stride;
     const double xi = x[i][0], yi = x[i][1], zi = PLANAR ? 0.0 : x[i][2];
+    const double dxi = disp[i][0], dyi = disp[i][1], dzi = PLANAR ? 0.0 : disp[i][2];
     const double radi = radius[i];
     const BondParams *prow = params[type[i]];
     double fxi = 0.0, fyi = 0.0, fzi = 0.0;    // summed here: fewer stores in the loop
@@ -555,6 +623,9 @@ template <int F> void PairLatticeBond::eval()
       const double rinv = 1.0 / rr;
       const double nx = dx * rinv, ny = dy * rinv, nz = PLANAR ? 0.0 : dz * rinv;
       const double xn = rr - (radi + radius[j]);    // normal stretch, tension positive
+      // this step's relative displacement (dx minus its value at the last step)
+      const double ddx = dxi - disp[j][0], ddy = dyi - disp[j][1];
+      const double ddz = PLANAR ? 0.0 : dzi - disp[j][2];
 
       int state = b.state;
       if (state == LB_INTACT && xn > p.xb) {
@@ -562,18 +633,15 @@ template <int F> void PairLatticeBond::eval()
         b.state = LB_BROKEN_TENSION;
         state = LB_BROKEN_TENSION;
         if (TALLY) {
-          q_break_n += normal_release(b, radi + radius[j], p.kn, xn);
-          q_break_s += spring_release(b, p.ks, dx, dy, dz);
+          q_break_n += normal_release(radi + radius[j], p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
+          q_break_s += spring_release(b, p.ks, ddx, ddy, ddz);
           b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
         }
       }
       if (state != LB_INTACT && xn >= 0.0) {
         // open contact: no force, no memory
-        if (TALLY) q_friction += spring_release(b, p.ks, dx, dy, dz);
+        if (TALLY) q_friction += spring_release(b, p.ks, ddx, ddy, ddz);
         b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
-        b.dx_prev[0] = dx;
-        b.dx_prev[1] = dy;
-        b.dx_prev[2] = dz;
         continue;
       }
 
@@ -586,10 +654,8 @@ template <int F> void PairLatticeBond::eval()
         b.state = LB_BROKEN_SHEAR;
         state = LB_BROKEN_SHEAR;
         if (xn >= 0.0) {
-          if (TALLY) q_break_n += normal_release(b, radi + radius[j], p.kn, xn);
-          b.dx_prev[0] = dx;
-          b.dx_prev[1] = dy;
-          b.dx_prev[2] = dz;
+          if (TALLY)
+            q_break_n += normal_release(radi + radius[j], p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
           continue;
         }
       }
@@ -615,8 +681,6 @@ template <int F> void PairLatticeBond::eval()
           }
         }
         // add the tangential part of this step's relative displacement
-        const double ddx = dx - b.dx_prev[0], ddy = dy - b.dx_prev[1];
-        const double ddz = PLANAR ? 0.0 : dz - b.dx_prev[2];
         const double dn = ddx * nx + ddy * ny + ddz * nz;
         const double tx = ddx - dn * nx, ty = ddy - dn * ny, tz = PLANAR ? 0.0 : ddz - dn * nz;
         const double s1x = sx, s1y = sy, s1z = sz;    // rotated old spring (for the heat)
@@ -640,13 +704,11 @@ template <int F> void PairLatticeBond::eval()
             // broken in shear while in tension: the contact is open
             if (TALLY) {
               const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, none[3] = {0.0, 0.0, 0.0};
-              q_break_n += normal_release(b, radi + radius[j], p.kn, xn);
+              q_break_n +=
+                  normal_release(radi + radius[j], p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
               q_break_s += shear_heat(p.ks, s1, t, none);
             }
             b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
-            b.dx_prev[0] = dx;
-            b.dx_prev[1] = dy;
-            b.dx_prev[2] = dz;
             continue;
           }
           if (FRICTION) {
@@ -677,9 +739,6 @@ template <int F> void PairLatticeBond::eval()
       } else if (has_shear) {
         b.shear[0] = b.shear[1] = b.shear[2] = 0.0;    // a frictionless closed contact
       }
-      b.dx_prev[0] = dx;
-      b.dx_prev[1] = dy;
-      b.dx_prev[2] = dz;
 
       // force on the owner i; the partner gets the opposite
       const double fx = -fn * nx + fsx, fy = -fn * ny + fsy;
@@ -711,14 +770,14 @@ template <int F> void PairLatticeBond::eval()
 
 /* ----------------------------------------------------------------------
    heat of a normal spring that breaks at stretch xn: Kn/4 (xp^2 + xn^2),
-   xp its stretch at the last update (touch = ri + rj)
+   xp its stretch at the last step, when the separation was (px, py, pz)
+   (touch = ri + rj)
 ------------------------------------------------------------------------- */
 
-double PairLatticeBond::normal_release(const LatticeBondRecord &b, double touch, double kn,
-                                       double xn)
+double PairLatticeBond::normal_release(double touch, double kn, double xn, double px, double py,
+                                       double pz)
 {
-  const double *d = b.dx_prev;
-  const double xp = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - touch;
+  const double xp = sqrt(px * px + py * py + pz * pz) - touch;
   return 0.25 * kn * (xp * xp + xn * xn);
 }
 
@@ -736,18 +795,51 @@ double PairLatticeBond::shear_heat(double ks, const double *s1, const double *t,
 
 /* ----------------------------------------------------------------------
    heat of a shear spring that lets go this step (s2 = 0 in the heat
-   formula above): Ks/2 (s1.dst + |s1|^2); the increment's normal part is of
-   second order in the step and is kept, the spring is not rotated
+   formula above): Ks/2 (s1.dst + |s1|^2), (tx, ty, tz) the step's relative
+   displacement; its normal part is of second order in the step and is kept,
+   the spring is not rotated
 ------------------------------------------------------------------------- */
 
-double PairLatticeBond::spring_release(const LatticeBondRecord &b, double ks, double dx, double dy,
-                                       double dz)
+double PairLatticeBond::spring_release(const LatticeBondRecord &b, double ks, double tx, double ty,
+                                       double tz)
 {
   const double *sh = b.shear;
   if (sh[0] == 0.0 && sh[1] == 0.0 && sh[2] == 0.0) return 0.0;
-  const double t[3] = {dx - b.dx_prev[0], dy - b.dx_prev[1], dz - b.dx_prev[2]};
+  const double t[3] = {tx, ty, tz};
   const double none[3] = {0.0, 0.0, 0.0};
   return shear_heat(ks, sh, t, none);
+}
+
+/* ----------------------------------------------------------------------
+   forward communication: the step's displacements of the ghosts' owners
+   (a displacement needs no periodic shift)
+------------------------------------------------------------------------- */
+
+int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
+                                       int * /*pbc*/)
+{
+  double **disp = fix_store->disp;
+  int m = 0;
+  for (int k = 0; k < n; k++) {
+    const int i = list[k];
+    buf[m++] = disp[i][0];
+    buf[m++] = disp[i][1];
+    buf[m++] = disp[i][2];
+  }
+  return m;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLatticeBond::unpack_forward_comm(int n, int first, double *buf)
+{
+  double **disp = fix_store->disp;
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    disp[i][0] = buf[m++];
+    disp[i][1] = buf[m++];
+    disp[i][2] = buf[m++];
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -764,7 +856,7 @@ double PairLatticeBond::local_elastic_energy() const
   double energy = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     const LatticeBondRecord *r = fix_store->records(i);
-    const int *idx = partner_idx + (bigint) i * maxslot;
+    const int *idx = partner_idx + (bigint) i * partner_stride;
     for (int s = 0; s < fix_store->nrec[i]; s++) {
       const int j = idx[s];
       if (j < 0) continue;
@@ -887,7 +979,7 @@ void PairLatticeBond::write_data_all(FILE *fp)
 double PairLatticeBond::memory_usage()
 {
   double bytes = Pair::memory_usage();
-  bytes += (double) partner_nmax * maxslot * sizeof(int);
+  bytes += (double) partner_nmax * partner_stride * sizeof(int);
   bytes += (double) cand_i.capacity() * 2 * sizeof(int);
   return bytes;
 }

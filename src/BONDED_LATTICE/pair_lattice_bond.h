@@ -44,6 +44,8 @@ class PairLatticeBond : public Pair {
   void write_data(FILE *) override;
   void write_data_all(FILE *) override;
   double memory_usage() override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
 
   // bond parameters of one type pair (SI: N/m, N/m, m, N, -)
   struct BondParams {
@@ -51,8 +53,10 @@ class PairLatticeBond : public Pair {
   };
 
   FixLatticeBondStore *store() const { return fix_store; }
-  // records of local atoms whose partner is a ghost/local index, -1 if absent
+  // local/ghost index of each record's partner, -1 if absent: record s of
+  // atom i at partner_index()[i * partner_index_stride() + s]
   const int *partner_index() const { return partner_idx; }
+  int partner_index_stride() const { return partner_stride; }
 
   // energy accounting (compute lattice/energy): heat released on this rank
   // since the pair style was created, [0] breaking (normal springs),
@@ -75,6 +79,7 @@ class PairLatticeBond : public Pair {
 
   int *partner_idx;    // local index of each record's partner, refreshed after reneighbouring
   int partner_nmax;
+  int partner_stride;  // records per atom in partner_idx (the store's capacity)
   std::vector<int> cand_i, cand_j;    // unbonded pairs that may come into contact
   // physics used by the type pairs (init_style): selects the compiled force loop
   enum { SHEAR_PAIRS_NONE, SHEAR_PAIRS_SOME, SHEAR_PAIRS_ALL };
@@ -86,9 +91,11 @@ class PairLatticeBond : public Pair {
 
   void allocate();
   void warn_data_file_has_no_bonds();
+  static bool owned_pair(int a, int b, int nlocal, const tagint *tag, int &i, int &j);
   void create_bonds();
   void refresh_partners();
   void detect_new_contacts();
+  void relayout_partners();
   // compile-time features of the force loop (bits of its template argument)
   enum EvalFeature {
     LB_EV = 1,            // energy / virial tallies (thermo steps)
@@ -107,11 +114,11 @@ class PairLatticeBond : public Pair {
   template <std::size_t... I>
   static constexpr std::array<EvalFn, sizeof...(I)> make_eval_table(std::index_sequence<I...>);
   static const std::array<EvalFn, LB_NFEATURES> EVAL_TABLE;
-  static double normal_release(const struct LatticeBondRecord &, double touch, double kn,
-                               double xn);
+  static double normal_release(double touch, double kn, double xn, double px, double py,
+                               double pz);
   static double shear_heat(double ks, const double *s1, const double *t, const double *s2);
-  static double spring_release(const struct LatticeBondRecord &, double ks, double dx, double dy,
-                               double dz);
+  static double spring_release(const struct LatticeBondRecord &, double ks, double tx, double ty,
+                               double tz);
 };
 
 }    // namespace LAMMPS_NS
