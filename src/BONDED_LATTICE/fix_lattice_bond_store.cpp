@@ -146,16 +146,19 @@ void FixLatticeBondStore::set_maxslot(int n)
 
 /* ----------------------------------------------------------------------
    each local atom's displacement since the last force evaluation, with
-   periodic jumps removed; the pair style sends it to the ghosts
+   periodic jumps removed; the pair style sends it to the ghosts.  With
+   limit > 0: the index of an atom that moved more than limit along an axis
+   (or to NaN), else -1
 ------------------------------------------------------------------------- */
 
-void FixLatticeBondStore::update_displacements()
+int FixLatticeBondStore::update_displacements(double limit)
 {
   const int nlocal = atom->nlocal;
-  if (nlocal == 0) return;
+  if (nlocal == 0) return -1;
   double *x = atom->x[0];
   double *last = xlast[0];
   double *d = disp[0];
+  const int n = 3 * nlocal;
   if (domain->triclinic) {
     for (int i = 0; i < nlocal; i++) {
       double step[3] = {x[3 * i] - last[3 * i], x[3 * i + 1] - last[3 * i + 1],
@@ -166,22 +169,29 @@ void FixLatticeBondStore::update_displacements()
         last[3 * i + k] = x[3 * i + k];
       }
     }
-    return;
+  } else {
+    // orthogonal box: a step longer than half the box is a periodic jump
+    const int periodic[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
+    const double prd[3] = {domain->xprd, domain->yprd, domain->zprd};
+    for (int m = 0; m < n; m++) {
+      d[m] = x[m] - last[m];
+      last[m] = x[m];
+    }
+    for (int k = 0; k < 3; k++) {
+      if (!periodic[k]) continue;
+      const double half = 0.5 * prd[k];
+      for (int m = k; m < n; m += 3)
+        if (std::fabs(d[m]) > half) d[m] -= std::copysign(prd[k], d[m]);
+    }
   }
-  // orthogonal box: a step longer than half the box is a periodic jump
-  const int periodic[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
-  const double prd[3] = {domain->xprd, domain->yprd, domain->zprd};
-  const int n = 3 * nlocal;
-  for (int m = 0; m < n; m++) {
-    d[m] = x[m] - last[m];
-    last[m] = x[m];
-  }
-  for (int k = 0; k < 3; k++) {
-    if (!periodic[k]) continue;
-    const double half = 0.5 * prd[k];
-    for (int m = k; m < n; m += 3)
-      if (std::fabs(d[m]) > half) d[m] -= std::copysign(prd[k], d[m]);
-  }
+  if (limit <= 0.0) return -1;
+  // one cheap pass; the culprit is looked for only if there is one (NaN fails too)
+  int ok = 1;
+  for (int m = 0; m < n; m++) ok &= (std::fabs(d[m]) <= limit);
+  if (ok) return -1;
+  for (int m = 0; m < n; m++)
+    if (!(std::fabs(d[m]) <= limit)) return m / 3;
+  return -1;
 }
 
 /* ---------------------------------------------------------------------- */

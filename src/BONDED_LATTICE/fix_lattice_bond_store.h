@@ -55,7 +55,7 @@ class FixLatticeBondStore : public Fix {
   void set_maxslot(int n);                 // new limit; error if an atom holds more
   void fit_capacity(int n);                // capacity = max(n, every atom's count) <= maxslot
   int local_max_records() const;
-  void update_displacements();             // disp = x - xlast, xlast = x (local atoms)
+  int update_displacements(double limit);  // disp = x - xlast, xlast = x (local atoms)
 
   int maxslot;           // most records an atom may hold (pair_style keyword)
   int capacity;          // records stored per atom now: grows on demand up to maxslot

@@ -33,13 +33,20 @@ using namespace LAMMPS_NS;
 
 static constexpr double DEFAULT_TOLERANCE = 0.01;
 static constexpr int DEFAULT_MAXSLOT = 16;
+// a warning above this fraction of the critical time step (see check_time_step)
+static constexpr double DT_SAFETY_FRACTION = 0.5;
+// a particle moving more than this fraction of the smallest radius in one step
+// means the integration has become unstable
+static constexpr double STEP_LIMIT_FRACTION = 0.1;
+static constexpr double BIG = 1.0e300;
 
 /* ---------------------------------------------------------------------- */
 
 PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
     Pair(lmp), params(nullptr), bondable(nullptr), coeff_set(nullptr),
     tolerance(DEFAULT_TOLERANCE), maxslot(DEFAULT_MAXSLOT), cut_user(0.0), cut_global(0.0),
-    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), partner_stride(0), shear_pairs(SHEAR_PAIRS_SOME),
+    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), partner_stride(0), min_radius(0.0),
+    dt_critical(0.0), shear_pairs(SHEAR_PAIRS_SOME),
     any_friction(1), uniform_params(0), tally_flag(0)
 {
   heat[0] = heat[1] = heat[2] = 0.0;
@@ -49,6 +56,7 @@ PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
   finitecutflag = 1;
   centroidstressflag = CENTROID_SAME;
   comm_forward = 3;    // the particles' displacements since the last step, to the ghosts
+  comm_reverse = 1;    // bond stiffness summed per particle (critical time step)
   store_id = "LATTICE_BOND_STORE";
 }
 
@@ -212,9 +220,14 @@ void PairLatticeBond::init_style()
                                : SHEAR_PAIRS_SOME;
 
   // cutoff: the longest bond that can exist (2 * largest radius, plus tolerance)
-  double maxrad_local = 0.0, maxrad = 0.0;
-  for (int i = 0; i < atom->nlocal; i++) maxrad_local = MAX(maxrad_local, atom->radius[i]);
+  double maxrad_local = 0.0, maxrad = 0.0, minrad_local = BIG, minrad = BIG;
+  for (int i = 0; i < atom->nlocal; i++) {
+    maxrad_local = MAX(maxrad_local, atom->radius[i]);
+    if (atom->radius[i] > 0.0) minrad_local = MIN(minrad_local, atom->radius[i]);
+  }
   MPI_Allreduce(&maxrad_local, &maxrad, 1, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(&minrad_local, &minrad, 1, MPI_DOUBLE, MPI_MIN, world);
+  min_radius = (minrad < BIG) ? minrad : 0.0;
   if (atom->natoms > 0 && maxrad <= 0.0)
     error->all(FLERR, "pair_style lattice/bond: all particles have zero diameter; set diameters "
                "(the bond rest length is r_i + r_j)");
@@ -487,6 +500,89 @@ void PairLatticeBond::relayout_partners()
   partner_stride = stride;
 }
 
+/* ----------------------------------------------------------------------
+   critical time step of the bonded lattice, reported at the start of each
+   run: velocity Verlet is stable for dt < 2 / omega_max, and by Gershgorin's
+   theorem omega_max^2 <= max_i 2 sum_j k_ij / m_i over the particle's records
+   (k = max(Kn, Ks): each bond's stiffness matrix has eigenvalues Kn and Ks),
+   so dt_c = 2 / sqrt(max_i 2 sum_j k_ij / m_i).  It is a lower bound of the
+   exact limit (0.6-0.9 of it for regular lattices, REFERENCE of
+   conversion.critical_time_step); walls and damping are not included
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::check_time_step()
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const int *type = atom->type;
+  const double *rmass = atom->rmass;
+  stiffness_sum.assign(nall, 0.0);
+  for (int i = 0; i < nlocal; i++) {
+    const int *idx = partner_idx + (bigint) i * partner_stride;
+    for (int s = 0; s < fix_store->nrec[i]; s++) {
+      const int j = idx[s];
+      if (j < 0) continue;
+      const BondParams &p = params[type[i]][type[j]];
+      const double k = MAX(p.kn, p.ks);
+      stiffness_sum[i] += k;
+      stiffness_sum[j] += k;
+    }
+  }
+  comm->reverse_comm(this);
+  double lambda_local = 0.0, lambda = 0.0;
+  for (int i = 0; i < nlocal; i++)
+    if (rmass[i] > 0.0) lambda_local = MAX(lambda_local, 2.0 * stiffness_sum[i] / rmass[i]);
+  MPI_Allreduce(&lambda_local, &lambda, 1, MPI_DOUBLE, MPI_MAX, world);
+  dt_critical = (lambda > 0.0) ? 2.0 / sqrt(lambda) : 0.0;
+  if (dt_critical <= 0.0) return;
+  const double dt = update->dt;
+  if (comm->me == 0)
+    utils::logmesg(lmp, "pair_style lattice/bond: critical time step {:.6g} (stiffest particle, "
+                   "walls not included); the time step {:.6g} is {:.3f} of it\n", dt_critical, dt,
+                   dt / dt_critical);
+  if (dt > DT_SAFETY_FRACTION * dt_critical && comm->me == 0)
+    error->warning(FLERR, "Time step {:.6g} is {:.2f} of the critical time step {:.6g} of "
+                   "pair_style lattice/bond (above the safety fraction {}): the run may become "
+                   "unstable; use a time step of at most {:.6g}", dt, dt / dt_critical, dt_critical,
+                   DT_SAFETY_FRACTION, DT_SAFETY_FRACTION * dt_critical);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLatticeBond::report_instability(int i)
+{
+  double **x = atom->x;
+  const double *d = fix_store->disp[i];
+  const double step = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  const double dt = update->dt;
+  error->one(FLERR,
+             "pair_style lattice/bond: atom {} moved {:.6g} in one time step at step {} (more "
+             "than a tenth of the smallest particle radius, {:.6g}; it is now at {:.6g} {:.6g} "
+             "{:.6g}): the integration is unstable. The time step {:.6g} is {:.2f} of the "
+             "critical time step {:.6g} reported at the start of the run: reduce it to at most "
+             "{:.6g}, or look for a much stiffer wall or type pair",
+             atom->tag[i], step, update->ntimestep, STEP_LIMIT_FRACTION * min_radius, x[i][0],
+             x[i][1], x[i][2], dt, dt_critical > 0.0 ? dt / dt_critical : 0.0, dt_critical,
+             DT_SAFETY_FRACTION * dt_critical);
+}
+
+/* ----------------------------------------------------------------------
+   reverse communication: ghosts' stiffness sums to their owners
+------------------------------------------------------------------------- */
+
+int PairLatticeBond::pack_reverse_comm(int n, int first, double *buf)
+{
+  for (int k = 0; k < n; k++) buf[k] = stiffness_sum[first + k];
+  return n;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLatticeBond::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  for (int k = 0; k < n; k++) stiffness_sum[list[k]] += buf[k];
+}
+
 /* ---------------------------------------------------------------------- */
 
 void PairLatticeBond::compute(int eflag, int vflag)
@@ -501,9 +597,14 @@ void PairLatticeBond::compute(int eflag, int vflag)
   if (rebuilt) refresh_partners();
   if (!cand_i.empty()) detect_new_contacts();
 
-  // each particle's displacement over this step, ghosts included
-  fix_store->update_displacements();
+  // each particle's displacement over this step, ghosts included; outside
+  // setup (where a user may have moved atoms between runs) a step longer than
+  // a tenth of a radius stops an unstable run before it writes NaN
+  const bool setup = update->setupflag;
+  const int runaway = fix_store->update_displacements(setup ? 0.0 : STEP_LIMIT_FRACTION * min_radius);
+  if (runaway >= 0) report_instability(runaway);
   comm->forward_comm(this);
+  if (setup) check_time_step();
 
   // each scene runs a force loop compiled for the physics it uses
   const int features = scene_features();

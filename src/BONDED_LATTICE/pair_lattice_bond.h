@@ -46,6 +46,11 @@ class PairLatticeBond : public Pair {
   double memory_usage() override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+
+  // critical time step found at the start of the last run (0: no bonds)
+  double critical_time_step() const { return dt_critical; }
 
   // bond parameters of one type pair (SI: N/m, N/m, m, N, -)
   struct BondParams {
@@ -80,6 +85,9 @@ class PairLatticeBond : public Pair {
   int *partner_idx;    // local index of each record's partner, refreshed after reneighbouring
   int partner_nmax;
   int partner_stride;  // records per atom in partner_idx (the store's capacity)
+  double min_radius;                  // smallest particle radius (instability test)
+  double dt_critical;                 // see check_time_step()
+  std::vector<double> stiffness_sum;  // per particle, for check_time_step()
   std::vector<int> cand_i, cand_j;    // unbonded pairs that may come into contact
   // physics used by the type pairs (init_style): selects the compiled force loop
   enum { SHEAR_PAIRS_NONE, SHEAR_PAIRS_SOME, SHEAR_PAIRS_ALL };
@@ -96,6 +104,8 @@ class PairLatticeBond : public Pair {
   void refresh_partners();
   void detect_new_contacts();
   void relayout_partners();
+  void check_time_step();
+  [[noreturn]] void report_instability(int i);
   // compile-time features of the force loop (bits of its template argument)
   enum EvalFeature {
     LB_EV = 1,            // energy / virial tallies (thermo steps)
