@@ -175,3 +175,55 @@ run             1
     assert "format 1" in result.output and "older BONDED_LATTICE version" in result.output, \
         result.output[-1500:]
     assert "Rerun the model from its data file" in result.output
+
+
+SMALL_DECK = """
+units           si
+dimension       2
+boundary        f f p
+atom_style      sphere
+newton          on
+lattice         hex 1.0e-3
+region          box block -1 5 -1 4 -0.5 0.5
+create_box      1 box
+region          b block 0 3.9 0 2.5 -0.5 0.5
+create_atoms    1 region b
+set             type 1 diameter 1.0e-3
+set             type 1 mass 2.295e-3
+pair_style      lattice/bond
+pair_coeff      1 1 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915
+neighbor        1.0e-4 bin
+velocity        all set 0.001 0 0
+fix             nve all nve
+timestep        2e-8
+run             10
+write_restart   whole.restart
+"""
+READ_BACK = """
+read_restart    {name}
+pair_coeff      1 1 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915
+fix             nve all nve
+run             1
+"""
+
+
+@pytest.mark.parametrize("fraction", [0.02, 0.5, 0.9, 0.999])
+def test_truncated_restart_file_is_rejected(tmp_path, fraction):
+    """A restart file cut short anywhere (a job killed while writing it) is refused."""
+    made = run_deck(SMALL_DECK, tmp_path / "write")
+    assert made.returncode == 0, made.output[-1500:]
+    whole = (tmp_path / "write" / "whole.restart").read_bytes()
+    (tmp_path / "cut.restart").write_bytes(whole[: int(fraction * len(whole))])
+    result = run_deck(READ_BACK.format(name=tmp_path / "cut.restart"), tmp_path / "read")
+    assert result.returncode != 0
+    assert "Incomplete or corrupted LAMMPS restart file" in result.output, result.output[-1500:]
+    # the whole file reads back
+    fine = run_deck(READ_BACK.format(name=tmp_path / "write" / "whole.restart"), tmp_path / "ok")
+    assert fine.returncode == 0, fine.output[-1500:]
+
+
+def test_foreign_file_is_rejected_as_restart(tmp_path):
+    (tmp_path / "foreign.restart").write_bytes(bytes(range(256)) * 16)
+    result = run_deck(READ_BACK.format(name=tmp_path / "foreign.restart"), tmp_path / "read")
+    assert result.returncode != 0
+    assert "Invalid LAMMPS restart file" in result.output, result.output[-1500:]

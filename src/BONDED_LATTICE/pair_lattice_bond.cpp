@@ -45,7 +45,7 @@ static constexpr double BIG = 1.0e300;
 PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
     Pair(lmp), params(nullptr), bondable(nullptr), coeff_set(nullptr),
     tolerance(DEFAULT_TOLERANCE), maxslot(DEFAULT_MAXSLOT), cut_user(0.0), cut_global(0.0),
-    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), partner_stride(0), min_radius(0.0),
+    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), partner_stride(0), own_map(0), min_radius(0.0),
     dt_critical(0.0), shear_pairs(SHEAR_PAIRS_SOME),
     any_friction(1), uniform_params(0), tally_flag(0)
 {
@@ -194,6 +194,7 @@ void PairLatticeBond::init_style()
     if (atom->map_user == Atom::MAP_NONE) atom->map_user = Atom::MAP_YES;
     atom->map_init();
     atom->map_set();
+    own_map = 1;
   }
 
   // which physics the type pairs use: the force loop is compiled for it
@@ -378,6 +379,14 @@ void PairLatticeBond::refresh_partners()
     partner_stride = fix_store->capacity;
     memory->destroy(partner_idx);
     memory->create(partner_idx, (bigint) partner_nmax * partner_stride, "pair:partner_idx");
+  }
+
+  // a map made here, after the input's fixes: classes that cached the map style
+  // when they were created (Irregular of fix balance) move atoms without
+  // updating it, so it is rebuilt from the current local and ghost atoms
+  if (own_map) {
+    atom->map_clear();
+    atom->map_set();
   }
 
   for (int i = 0; i < nlocal; i++) {

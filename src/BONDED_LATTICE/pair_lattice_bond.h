@@ -85,6 +85,7 @@ class PairLatticeBond : public Pair {
   int *partner_idx;    // local index of each record's partner, refreshed after reneighbouring
   int partner_nmax;
   int partner_stride;  // records per atom in partner_idx (the store's capacity)
+  int own_map;                        // 1 if this style created the atom map
   double min_radius;                  // smallest particle radius (instability test)
   double dt_critical;                 // see check_time_step()
   std::vector<double> stiffness_sum;  // per particle, for check_time_step()
