@@ -76,6 +76,10 @@ SQ3 = math.sqrt(3.0)
 
 NU_MAX = {2: 0.25, 3: 0.2}                      # Ks >= 0 (2013 eq. B2, 2017 eq. B2)
 MU_I_MIN = {2: 1.0 / SQ3, 3: 1.0 / (2.0 * SQ2)}   # mu_p >= 0 (eqs. B5)
+# internal friction at most 100 (friction angle 89.4 degrees): far beyond any rock, and
+# above it Fs0 = (1 - sqrt2 mu_p) ... loses digits to rounding as mu_p nears its limit
+# (relative error about 1e-16 mu_i^2)
+MU_I_MAX = 100.0
 MU_P_MAX = {2: 1.0 / SQ3, 3: 1.0 / SQ2}         # Cu finite (2013 eq. 29, 2017 eq. 14)
 _COORDINATION = {2: 6, 3: 12}                   # bonds per particle, close packing
 # relative slack on the closed bounds, so that values which went through a conversion and
@@ -164,11 +168,12 @@ def _check_nu(nu: float, dim: int) -> float:
 def _check_mu_i(mu_i: float, dim: int) -> float:
     mu_i = float(mu_i)
     mu_min = MU_I_MIN[dim]
-    if mu_i >= mu_min * (1.0 - _SLACK) and math.isfinite(mu_i):
-        return max(mu_i, mu_min)
+    if mu_min * (1.0 - _SLACK) <= mu_i <= MU_I_MAX * (1.0 + 1e-9):
+        return min(max(mu_i, mu_min), MU_I_MAX)
     raise ValueError(f"mu_i = {mu_i} is out of range for a {dim}D lattice: need "
-                     f"{_MU_I_TEXT[dim]} = {mu_min:.6g} <= mu_i < inf (the bond friction "
-                     f"mu_p must be >= 0)")
+                     f"{_MU_I_TEXT[dim]} = {mu_min:.6g} <= mu_i <= {MU_I_MAX:g} (the bond "
+                     f"friction mu_p must be >= 0; above {MU_I_MAX:g}, a friction angle of "
+                     f"89.4 degrees, Fs0 is lost to rounding)")
 
 
 def _check_stiffness(Kn: float, Ks: float, dim: int) -> tuple[float, float]:
@@ -257,6 +262,24 @@ def rock_to_bond(E: float, nu: float, Tu: float, Cu: float, mu_i: float, d: floa
     dim, d = _check_dim(dim), _positive("d", d)
     E, Tu, Cu = float(E), float(Tu), float(Cu)
     nu, mu_i = _check_nu(nu, dim), _check_mu_i(mu_i, dim)
+    try:
+        kn, ks, xb, fs0, mu_p = _rock_to_bond(E, nu, Tu, Cu, mu_i, d, dim)
+    except (ZeroDivisionError, OverflowError):
+        kn = ks = xb = fs0 = mu_p = math.nan
+    # inputs spanning too many orders of magnitude over- or underflow
+    for name, value in (("Kn", kn), ("Xb", xb), ("Fs0", fs0)):
+        if not (value > 0.0 and math.isfinite(value)):
+            raise ValueError(f"{name} = {value} follows from these properties and d, out of "
+                             f"range: need 0 < {name} < inf (the values over- or underflow)")
+    if not math.isfinite(ks):
+        raise ValueError(f"Ks = {ks} follows from these properties and d: not finite")
+    _warn_caveat(nu, Tu, Cu, mu_i, dim)
+    return BondParameters(kn, ks, xb, fs0, mu_p)
+
+
+def _rock_to_bond(E: float, nu: float, Tu: float, Cu: float, mu_i: float, d: float,
+                  dim: int) -> tuple[float, float, float, float, float]:
+    """The closed forms of :func:`rock_to_bond`, for checked inputs."""
     big_i = (math.sqrt(1.0 + mu_i * mu_i) + mu_i) ** 2
     if dim == 2:
         kn = E / (SQ3 * (1.0 - 2.0 * nu) * (1.0 + nu))                          # B1
@@ -275,8 +298,7 @@ def rock_to_bond(E: float, nu: float, Tu: float, Cu: float, mu_i: float, d: floa
     else:
         xb = (3.0 * kn + ks) / (6.0 * SQ2 * kn * (kn + ks)) * Tu * d * d         # B3
         fs0 = (1.0 - SQ2 * mu_p) / 6.0 * Cu * d * d                             # B4
-    _warn_caveat(nu, Tu, Cu, mu_i, dim)
-    return BondParameters(kn, ks, xb, fs0, mu_p)
+    return kn, ks, xb, fs0, mu_p
 
 
 def rock_to_bond_props(props: RockProperties, d: float, dim: int) -> BondParameters:
@@ -295,6 +317,21 @@ def bond_to_rock(Kn: float, Ks: float, Xb: float, Fs0: float, mu_p: float, d: fl
     dim, d = _check_dim(dim), _positive("d", d)
     kn, ks = _check_stiffness(Kn, Ks, dim)
     xb, fs0, mu_p = float(Xb), float(Fs0), float(mu_p)
+    try:
+        E, nu, Tu, Cu, mu_i = _bond_to_rock(kn, ks, xb, fs0, mu_p, d, dim)
+    except (ZeroDivisionError, OverflowError):
+        E = nu = Tu = Cu = mu_i = math.nan
+    for name, value in (("E", E), ("Tu", Tu), ("Cu", Cu)):
+        if not (value > 0.0 and math.isfinite(value)):
+            raise ValueError(f"{name} = {value} follows from Kn, Ks, Xb, Fs0, mu_p and d, out of "
+                             f"range: need 0 < {name} < inf (the values over- or underflow)")
+    _warn_caveat(nu, Tu, Cu, mu_i, dim)
+    return RockProperties(E, nu, Tu, Cu, mu_i)
+
+
+def _bond_to_rock(kn: float, ks: float, xb: float, fs0: float, mu_p: float, d: float,
+                  dim: int) -> tuple[float, float, float, float, float]:
+    """The closed forms of :func:`bond_to_rock`, for checked inputs."""
     if dim == 2:
         E = SQ3 * (kn + ks) * (5.0 * kn - ks) / (8.0 * kn)                     # C1
         nu = 0.25 * (1.0 - ks / kn)                                              # C2
@@ -308,8 +345,7 @@ def bond_to_rock(Kn: float, Ks: float, Xb: float, Fs0: float, mu_p: float, d: fl
         Cu = 6.0 / (1.0 - SQ2 * mu_p) * fs0 / (d * d)                            # eq. 14
         big_p = (2.0 + SQ2 * mu_p) / (1.0 - SQ2 * mu_p)                          # eq. 15
     mu_i = (big_p - 1.0) / (2.0 * math.sqrt(big_p))
-    _warn_caveat(nu, Tu, Cu, mu_i, dim)
-    return RockProperties(E, nu, Tu, Cu, mu_i)
+    return E, nu, Tu, Cu, mu_i
 
 
 def _warn_caveat(nu: float, Tu: float, Cu: float, mu_i: float, dim: int) -> None:

@@ -32,6 +32,7 @@ stress in Pa, tension positive).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TextIO
@@ -79,8 +80,16 @@ class DeckSpec:
                                           else ("step_size",))
         for name in positive:
             value = getattr(self, name)
-            if not value > 0:
-                raise ValueError(f"{name} = {value} is out of range: need {name} > 0")
+            if not (value > 0 and math.isfinite(value)):
+                raise ValueError(f"{name} = {value} is out of range: need 0 < {name} < inf")
+        # every number the deck prints must be finite
+        for name in ("d", "area", "eta", "speed", "dt", "confining", "step_size",
+                     "halt_fraction"):
+            value = getattr(self, name)
+            if not math.isfinite(value):
+                raise ValueError(f"{name} = {value} is out of range: need a finite value")
+        if self.wall_kn is not None and not (self.wall_kn > 0 and math.isfinite(self.wall_kn)):
+            raise ValueError(f"wall_kn = {self.wall_kn} is out of range: need 0 < wall_kn < inf")
         if self.schedule == "stepwise" and self.relax_steps < 1:
             raise ValueError(f"relax_steps = {self.relax_steps} is out of range: the stepwise "
                              "schedule needs relax_steps >= 1")

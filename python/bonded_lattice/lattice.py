@@ -49,6 +49,7 @@ SQRT3 = math.sqrt(3.0)
 LAYER_SPACING = math.sqrt(2.0 / 3.0)  # between close-packed layers, in units of d
 ALLOWANCE = 0.2 * SQRT3               # the 2D recipe's "-0.2 lattice units" along y, in units of d
 _TOL = 1e-9                           # relative tolerance (units of d) when cutting a block
+MAX_PARTICLES = 10**8                 # generators refuse larger blocks (memory: ~10 GB of sites)
 
 # in-plane shift of the B and C layers (x, y in units of d), rows along y
 _LAYER_SHIFT = {"A": (0.0, 0.0), "B": (SQRT3 / 6.0, 0.5), "C": (SQRT3 / 3.0, 0.0)}
@@ -160,11 +161,18 @@ def _sorted(positions: np.ndarray, d: float, dim: int) -> np.ndarray:
 
 
 def _check_size(d: float, **sizes: float) -> None:
-    if not d > 0:
-        raise ValueError(f"d = {d} is out of range: need d > 0")
+    if not (d > 0 and math.isfinite(d)):
+        raise ValueError(f"d = {d} is out of range: need 0 < d < inf")
+    volume = 1.0
     for name, value in sizes.items():
-        if not value >= d:
-            raise ValueError(f"{name} = {value} is out of range: need {name} >= d = {d}")
+        if not (value >= d and math.isfinite(value)):
+            raise ValueError(f"{name} = {value} is out of range: need d = {d} <= {name} < inf")
+        volume *= value / d
+    # about one site per d^dim: refuse before allocating the sites
+    if volume > MAX_PARTICLES:
+        raise ValueError(f"{' x '.join(sizes)} = {' x '.join(f'{v:g}' for v in sizes.values())} "
+                         f"holds about {volume:.3g} particles of d = {d}: more than the "
+                         f"generators' limit of {MAX_PARTICLES:.0e}")
 
 
 def block_2d(width: float, height: float, d: float, orientation: float = 0.0) -> Lattice:
@@ -185,6 +193,9 @@ def block_2d(width: float, height: float, d: float, orientation: float = 0.0) ->
         depend on the orientation (the lattice's anisotropy).
     """
     _check_size(d, width=width, height=height)
+    if not math.isfinite(orientation):
+        raise ValueError(f"orientation = {orientation} is out of range: need a finite angle "
+                         f"in degrees")
     t = math.radians(orientation)
     c, s = math.cos(t), math.sin(t)
     a1 = d * np.array([c, s])                                     # along the rows
@@ -223,8 +234,12 @@ def hex_block_2d(n_across: int, d: float, aspect: float = 1.0, orientation: floa
     """
     if n_across < 2:
         raise ValueError(f"n_across = {n_across} is out of range: need n_across >= 2")
-    if not aspect > 0:
-        raise ValueError(f"aspect = {aspect} is out of range: need aspect > 0")
+    if not (aspect > 0 and math.isfinite(aspect)):
+        raise ValueError(f"aspect = {aspect} is out of range: need 0 < aspect < inf")
+    if n_across * n_across * aspect > MAX_PARTICLES:
+        raise ValueError(f"n_across = {n_across} with aspect = {aspect} holds about "
+                         f"{n_across * n_across * aspect:.3g} particles: more than the "
+                         f"generators' limit of {MAX_PARTICLES:.0e}")
     rows = math.floor((aspect * n_across - ALLOWANCE) / (0.5 * SQRT3) + _TOL) + 1
     if rows < 1:
         raise ValueError(f"aspect = {aspect} is too small: no complete row fits")
@@ -283,8 +298,12 @@ def close_packed_block_3d(n_y: int, d: float, aspect: float = 1.0,
     """
     if n_y < 2:
         raise ValueError(f"n_y = {n_y} is out of range: need n_y >= 2")
-    if not aspect > 0:
-        raise ValueError(f"aspect = {aspect} is out of range: need aspect > 0")
+    if not (aspect > 0 and math.isfinite(aspect)):
+        raise ValueError(f"aspect = {aspect} is out of range: need 0 < aspect < inf")
+    if float(n_y) ** 3 * aspect > MAX_PARTICLES:
+        raise ValueError(f"n_y = {n_y} with aspect = {aspect} holds about "
+                         f"{float(n_y) ** 3 * aspect:.3g} particles: more than the generators' "
+                         f"limit of {MAX_PARTICLES:.0e}")
     if n_y == 2:  # the single unit: base rows of 2 and 1, one element on top
         return block_3d((0.5 * SQRT3 + 1.0) * d, 2 * d, (LAYER_SPACING + 1.0) * d, d, stacking)
     pairs_x = math.floor((n_y - ALLOWANCE) / SQRT3 + _TOL)
