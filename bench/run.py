@@ -21,7 +21,6 @@ from __future__ import annotations
 import argparse
 import datetime
 import json
-import os
 import subprocess
 import sys
 from pathlib import Path
@@ -46,31 +45,6 @@ def measure(cells: int, steps: int, ranks: int, dim: int, models: list[str]) -> 
     return [json.loads(line) for line in out.splitlines() if line.startswith("{")]
 
 
-def machine() -> str:
-    """CPU model and core count of this machine."""
-    model = "unknown CPU"
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                model = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return f"{model}, {os.cpu_count()} cores"
-
-
-def commit() -> str:
-    """Short hash of the checked-out commit (with + if the tree has changes)."""
-    try:
-        head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=HERE, check=True,
-                              capture_output=True, text=True).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
-                               cwd=HERE, capture_output=True, text=True).stdout.strip()
-        return head + ("+" if dirty else "")
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true",
@@ -82,6 +56,8 @@ def main() -> None:
     parser.add_argument("--no-memory", action="store_true", help="skip the memory pass")
     args = parser.parse_args()
     from bench_throughput import FEATURE_MODELS
+
+    from bonded_lattice.provenance import git_commit, machine
 
     rows = []
     for dim in (3, 2):
@@ -123,7 +99,8 @@ def main() -> None:
                       flush=True)
 
     # the record for docs/performance.md
-    print(f"\n{datetime.date.today()}, commit {commit()}, {machine()}, "
+    print(f"\n{datetime.date.today()}, commit {git_commit(HERE, mark_changes=True)}, "
+          f"{machine()}, "
           f"`python bench/run.py{' --quick' if args.quick else ''}"
           f"{' --features' if args.features else ''}`\n")
     print("| dim | particles | ranks | lattice/bond (particle-steps/s) | vs bpm/spring "

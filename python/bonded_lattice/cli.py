@@ -155,8 +155,9 @@ def _common(p: argparse.ArgumentParser, test: bool = True, choose_test: bool = T
     if test:
         p.add_argument("--n", type=int, default=30,
                        help="particles across (2D) or elements along y (3D); default 30")
-        p.add_argument("--crossings", type=float, default=100.0,
-                       help="elastic wave crossings during loading (quasi-static control)")
+        p.add_argument("--crossings", type=float, default=None,
+                       help="elastic wave crossings during loading (quasi-static control; "
+                       "default 50 in 2D, 100 in 3D: docs/speed_error.md)")
         p.add_argument("--speed", type=float, default=None, help="platen speed in m/s (overrides --crossings)")
         p.add_argument("--schedule", choices=("constant", "paper"), default="constant",
                        help="constant: platens at constant speed (default, fast); paper: the "
@@ -165,8 +166,9 @@ def _common(p: argparse.ArgumentParser, test: bool = True, choose_test: bool = T
                        help="paper schedule: platen displacement per loading step, m")
         p.add_argument("--relax-steps", type=int, default=None,
                        help="paper schedule: time steps after each loading step")
-        p.add_argument("--damping", type=float, default=1.0,
-                       help="viscous damping as a multiple of the papers' eta (default 1)")
+        p.add_argument("--damping", type=float, default=None,
+                       help="viscous damping as a multiple of the papers' eta (default 0.25 "
+                       "in 2D, 1 in 3D: docs/speed_error.md)")
         p.add_argument("--elastic-strain", type=float, default=1.0e-4,
                        help="axial strain reached by --test elastic (default 1e-4)")
         p.add_argument("--orientation", type=float, default=0.0,

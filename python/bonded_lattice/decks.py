@@ -110,6 +110,16 @@ class DeckSpec:
         return "y" if self.dim == 2 else "z"
 
 
+# the failure halt is armed once the peak stress exceeds this fraction of Kn Xb / d^(dim-1),
+# the tensile stress scale of one bond (Tu is 2 (2D) or 3.1 (3D) times it)
+ARM_FRACTION = 0.01
+
+
+def halt_arm_stress(spec: DeckSpec) -> float:
+    """Stress (Pa) the peak must exceed before the failure halt can stop a strength test."""
+    return ARM_FRACTION * spec.bond.Kn * spec.bond.Xb / spec.d ** (spec.dim - 1)
+
+
 def deck_bond(spec: DeckSpec) -> BondParameters:
     """Bond parameters used in the deck (unbreakable for the elastic test)."""
     if spec.test == "elastic":
@@ -302,10 +312,12 @@ dump_modify     particles sort id format float %.17g
 fix             breaklog all ave/time 1 1 1 c_energy[5] c_energy[6] c_bonds[2] c_bonds[3] file breaking.dat
 """
     if spec.test != "elastic" and spec.halt_fraction > 0:
-        halt += f"""# stop once the block has failed: |stress| below {spec.halt_fraction:g} of its peak so far
+        halt += f"""# stop once the block has failed: |stress| below {spec.halt_fraction:g} of its peak so far,
+# armed only once the peak exceeds {ARM_FRACTION:g} of a bond's tensile stress Kn Xb / d^{spec.dim - 1}
+# (a platen's first jump can leave the stress at zero while the peak is still rounding)
 variable        smag equal abs(v_stress)
 fix             peaklog all vector {spec.thermo_every} v_smag
-variable        failed equal v_smag<{spec.halt_fraction:g}*max(f_peaklog)
+variable        failed equal (v_smag<{spec.halt_fraction:g}*max(f_peaklog))&&(max(f_peaklog)>{halt_arm_stress(spec):.6g})
 fix             stop all halt {spec.thermo_every} v_failed > 0.5 error continue
 """
     energy = columns = ""
