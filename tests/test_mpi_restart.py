@@ -227,3 +227,58 @@ def test_foreign_file_is_rejected_as_restart(tmp_path):
     result = run_deck(READ_BACK.format(name=tmp_path / "foreign.restart"), tmp_path / "read")
     assert result.returncode != 0
     assert "Invalid LAMMPS restart file" in result.output, result.output[-1500:]
+
+
+@pytest.mark.mpi
+def test_run_killed_with_sigkill_resumes_from_its_last_restart_file(tmp_path):
+    """A 2-rank run writing a restart file every 500 steps is killed (SIGKILL, the whole
+    process group) while the crack grows; runs resumed from its files reach the state of the
+    uninterrupted run: the same positions before the fracture, the same broken bonds after."""
+    import os
+    import signal
+    import subprocess
+    import time
+
+    from bonded_lattice.runner import lmp_command
+
+    args = DECK_ARGS + ["-var", "dumpevery", "200"]
+    # the uninterrupted run
+    whole = run_deck(DECK, tmp_path / "whole", np=2, args=args + ["-var", "steps", "5400"])
+    assert whole.returncode == 0, whole.output[-3000:]
+
+    # the same run with checkpoints, killed once the crack has started
+    work = tmp_path / "killed"
+    work.mkdir()
+    (work / "in.kill").write_text(DECK.replace("run             ${steps}",
+                                               "restart         500 ckpt.*\nrun             ${steps}"))
+    cmd = lmp_command(2) + ["-in", "in.kill", "-log", "log.kill", "-screen", "none",
+                           *args, "-var", "steps", "20000"]
+    proc = subprocess.Popen(cmd, cwd=work, start_new_session=True, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.time() + 300
+        while not (work / "ckpt.5000").exists() and proc.poll() is None and time.time() < deadline:
+            time.sleep(0.02)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+    assert proc.returncode != 0, "the run must be killed, not finish"
+    assert (work / "ckpt.4500").exists()
+
+    eta = (8 * 2650 * np.sqrt(3) * D**2 / 2 * 6.5874e10) ** 0.5 / 15
+    for start, stop in ((3000, 4000), (4500, 5400)):
+        resume = RESUME.format(eta=eta).replace("read_restart    restart.mid",
+                                                f"read_restart    {work}/ckpt.{start}")
+        resume = resume.replace("run             1000", f"run             {stop} upto")
+        res = run_deck(resume, tmp_path / f"from{start}", np=2)
+        assert res.returncode == 0, res.output[-3000:]
+        a = read_dump(tmp_path / "whole" / f"dump.tension2d.{stop}")
+        b = read_dump(tmp_path / f"from{start}" / "final.dump")
+        if stop == 4000:     # before the first break: the same trajectory to round-off
+            assert np.max(np.abs(a[:, 2:5] - b[:, 2:5])) < 1e-12 * D
+        else:                # after the fracture: the same broken-bond count within 1%
+            broken_whole = whole.column("c_bonds[2]")[-1] + whole.column("c_bonds[3]")[-1]
+            broken_resumed = res.thermo[-1]["c_bonds[2]"][-1] + res.thermo[-1]["c_bonds[3]"][-1]
+            assert broken_whole > 0
+            assert broken_resumed == pytest.approx(broken_whole, rel=0.01)
