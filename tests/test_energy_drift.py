@@ -10,24 +10,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import run_deck
+from conftest import block_2d_deck, run_deck
 
-DECK = """
-units           si
-dimension       2
-boundary        f f p
-atom_style      sphere
-newton          on
-lattice         hex 1.0e-3
-region          box block -2 8 -2 8 -0.5 0.5
-create_box      1 box
-region          block block 0 3.9 0 3.2 -0.5 0.5
-create_atoms    1 region block
-set             type 1 diameter 1.0e-3
-set             type 1 mass 2.295e-3
-pair_style      lattice/bond
-pair_coeff      1 1 6.5874e10 ${ks} 1.9011e-7 3.6905e4 0.23915
-neighbor        1.0e-4 bin
+DECK = block_2d_deck("-2 8 -2 8", "0 3.9 0 3.2",
+                     coeffs="6.5874e10 ${ks} 1.9011e-7 3.6905e4 0.23915") + """
 variable        vx atom 0.01*normal(0,1,8411)
 variable        vy atom 0.01*normal(0,1,2203)
 velocity        all set v_vx v_vy NULL units box

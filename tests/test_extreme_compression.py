@@ -7,25 +7,10 @@ the platens' work (docs/robustness.md)."""
 from __future__ import annotations
 
 import numpy as np
-from conftest import run_deck
+from conftest import block_2d_deck, run_deck
 
 D = 1.0e-3
-DECK = """
-units           si
-dimension       2
-boundary        s s p
-atom_style      sphere
-newton          on
-lattice         hex 1.0e-3
-region          box block -1 11 -1 9 -0.5 0.5
-create_box      1 box
-region          block block 0 10 0 8 -0.5 0.5
-create_atoms    1 region block
-set             type 1 diameter 1.0e-3
-set             type 1 mass 2.295e-3
-pair_style      lattice/bond
-pair_coeff      1 1 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915
-neighbor        1.0e-4 bin
+DECK = block_2d_deck("-1 11 -1 9", "0 10 0 8", boundary="s s p") + """
 neigh_modify    every 1 delay 0 check yes
 variable        ylo equal $(bound(all,ymin)-0.5e-3)
 variable        yhi equal $(bound(all,ymax)+0.5e-3)

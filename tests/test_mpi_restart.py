@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import run_deck
+from conftest import block_2d_deck, run_deck
 
 ROOT = Path(__file__).resolve().parent.parent
 DECK = (ROOT / "inputs" / "in.tension2d").read_text()
@@ -177,22 +177,7 @@ run             1
     assert "Rerun the model from its data file" in result.output
 
 
-SMALL_DECK = """
-units           si
-dimension       2
-boundary        f f p
-atom_style      sphere
-newton          on
-lattice         hex 1.0e-3
-region          box block -1 5 -1 4 -0.5 0.5
-create_box      1 box
-region          b block 0 3.9 0 2.5 -0.5 0.5
-create_atoms    1 region b
-set             type 1 diameter 1.0e-3
-set             type 1 mass 2.295e-3
-pair_style      lattice/bond
-pair_coeff      1 1 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915
-neighbor        1.0e-4 bin
+SMALL_DECK = block_2d_deck("-1 5 -1 4", "0 3.9 0 2.5") + """
 velocity        all set 0.001 0 0
 fix             nve all nve
 timestep        2e-8

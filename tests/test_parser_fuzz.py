@@ -12,23 +12,12 @@ import subprocess
 import sys
 import textwrap
 
+from conftest import block_2d_deck
+
 # a valid 2D scene, then one command under test, then a run that initialises it
-SETUP = """
-units           si
-dimension       2
-boundary        f f p
-atom_style      sphere
-newton          on
-lattice         hex 1.0e-3
-region          box block -2 8 -2 8 -0.5 0.5
-create_box      2 box
-region          block block 0 5 0 4 -0.5 0.5
-create_atoms    1 region block
-set             type 1 diameter 1.0e-3
-set             type 1 mass 2.295e-3
+SETUP = block_2d_deck("-2 8 -2 8", "0 5 0 4", types=2, coeffs=None) + """
 variable        wpos equal -1.0e-3
 fix             nve all nve
-neighbor        1.0e-4 bin
 timestep        2.0e-8
 """
 PAIR = ("pair_style lattice/bond", "pair_coeff * * 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915")

@@ -9,27 +9,12 @@ import re
 
 import pytest
 from bonded_lattice.conversion import critical_time_step
-from conftest import run_deck
+from conftest import block_2d_deck, run_deck
 
 D = 1.0e-3
 MASS = 2.295e-3                        # quartz, 2D, per metre of thickness
 KN, KS = 6.5874e10, 2.3715e10
-DECK = f"""
-units           si
-dimension       2
-boundary        f f p
-atom_style      sphere
-newton          on
-lattice         hex {D}
-region          box block -2 14 -2 12 -0.5 0.5
-create_box      1 box
-region          block block 0 10 0 8 -0.5 0.5
-create_atoms    1 region block
-set             type 1 diameter {D}
-set             type 1 mass {MASS}
-pair_style      lattice/bond
-pair_coeff      1 1 {KN} {KS} 1.9011e-7 3.6905e4 0.23915
-neighbor        {0.1 * D} bin
+DECK = block_2d_deck("-2 14 -2 12", "0 10 0 8", coeffs=f"{KN} {KS} 1.9011e-7 3.6905e4 0.23915") + """
 # a small random vibration, far below breaking, no damping
 variable        vx atom 0.01*normal(0,1,8411)
 variable        vy atom 0.01*normal(0,1,2203)
@@ -37,8 +22,8 @@ velocity        all set v_vx v_vy NULL units box
 fix             nve all nve
 thermo_style    custom step ke pe
 thermo          100
-timestep        ${{dt}}
-run             ${{steps}}
+timestep        ${dt}
+run             ${steps}
 """
 # the report in the log: "critical time step X (...); the time step Y is Z of it"
 REPORT = re.compile(r"critical time step ([0-9.eE+-]+) .*the time step ([0-9.eE+-]+) is "

@@ -10,31 +10,18 @@ import re
 import numpy as np
 import pytest
 from bonded_lattice.conversion import critical_time_step
-from conftest import run_deck
+from conftest import block_2d_deck, run_deck
 
 MASS = 2.295e-3
 KN, KS = 6.5874e10, 2.3715e10      # the stiff layer (quartz, 2D); the soft one has 1/1000
 CONTRAST = 1000.0
-DECK = f"""
-units           si
-dimension       2
-boundary        f f p
-atom_style      sphere
-newton          on
-lattice         hex 1.0e-3
-region          box block -2 14 -2 14 -0.5 0.5
-create_box      2 box
-region          block block 0 10 0 10 -0.5 0.5
-create_atoms    1 region block
-set             type 1 diameter 1.0e-3
-set             type 1 mass {MASS}
+DECK = block_2d_deck("-2 14 -2 14", "0 10 0 10", types=2, coeffs=None) + f"""
 region          upper block INF INF 4.5 INF INF INF
 set             region upper type 2
 pair_style      lattice/bond
 pair_coeff      1 1 {KN} {KS} 1.0e-5 1.0e6 0.23915
 pair_coeff      2 2 {KN / CONTRAST} {KS / CONTRAST} 1.0e-2 1.0e6 0.23915
 pair_coeff      1 2 {0.5 * (KN + KN / CONTRAST)} {0.5 * (KS + KS / CONTRAST)} 1.0e-5 1.0e6 0.23915
-neighbor        1.0e-4 bin
 variable        vx atom 0.01*normal(0,1,5531)
 variable        vy atom 0.01*normal(0,1,9127)
 velocity        all set v_vx v_vy NULL units box

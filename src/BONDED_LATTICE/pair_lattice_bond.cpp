@@ -287,6 +287,35 @@ bool PairLatticeBond::owned_pair(int a, int b, int nlocal, const tagint *tag, in
 }
 
 /* ----------------------------------------------------------------------
+   visit(i, j) for every pair of the neighbour list seen from its owner
+------------------------------------------------------------------------- */
+
+template <typename Visit> void PairLatticeBond::for_each_owned_pair(Visit &&visit)
+{
+  const tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int a = list->ilist[ii];
+    if (a >= nlocal) continue;
+    const int *jlist = list->firstneigh[a];
+    for (int jj = 0; jj < list->numneigh[a]; jj++) {
+      int i, j;
+      if (owned_pair(a, jlist[jj] & NEIGHMASK, nlocal, tag, i, j)) visit(i, j);
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+bool PairLatticeBond::has_record_with(int i, tagint partner) const
+{
+  const LatticeBondRecord *r = fix_store->records(i);
+  for (int s = 0; s < fix_store->nrec[i]; s++)
+    if (r[s].partner == partner) return true;
+  return false;
+}
+
+/* ----------------------------------------------------------------------
    first run: every pair closer than (ri + rj)(1 + tolerance) becomes an
    intact bond, stored on the lower tag
 ------------------------------------------------------------------------- */
@@ -305,33 +334,22 @@ void PairLatticeBond::create_bonds()
   std::vector<int> count(nlocal, 0);
   bigint nbond_local = 0;
   for (int pass = 0; pass < 2; pass++) {
-    for (int ii = 0; ii < list->inum; ii++) {
-      const int a = list->ilist[ii];
-      if (a >= nlocal) continue;
-      const int *jlist = list->firstneigh[a];
-      for (int jj = 0; jj < list->numneigh[a]; jj++) {
-        int i, j;
-        if (!owned_pair(a, jlist[jj] & NEIGHMASK, nlocal, tag, i, j)) continue;
-        if (!bondable[type[i]][type[j]]) continue;
-        const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
-        const double reach = (radius[i] + radius[j]) * (1.0 + tolerance);
-        if (delx * delx + dely * dely + delz * delz >= reach * reach) continue;
-        if (pass == 0) {
-          count[i]++;
-          continue;
-        }
-        // in a small periodic box two images of one partner may be in range
-        LatticeBondRecord *r = fix_store->records(i);
-        bool seen = false;
-        for (int s = 0; s < fix_store->nrec[i]; s++)
-          if (r[s].partner == tag[j]) seen = true;
-        if (seen) continue;
-        LatticeBondRecord *rec = fix_store->add_record(i);
-        rec->partner = tag[j];
-        rec->state = LB_INTACT;
-        nbond_local++;
+    for_each_owned_pair([&](int i, int j) {
+      if (!bondable[type[i]][type[j]]) return;
+      const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
+      const double reach = (radius[i] + radius[j]) * (1.0 + tolerance);
+      if (delx * delx + dely * dely + delz * delz >= reach * reach) return;
+      if (pass == 0) {
+        count[i]++;
+        return;
       }
-    }
+      // in a small periodic box two images of one partner may be in range
+      if (has_record_with(i, tag[j])) return;
+      LatticeBondRecord *rec = fix_store->add_record(i);
+      rec->partner = tag[j];
+      rec->state = LB_INTACT;
+      nbond_local++;
+    });
     if (pass == 0) {
       int most = 0, most_all = 0;
       for (int i = 0; i < nlocal; i++) {
@@ -436,26 +454,14 @@ void PairLatticeBond::refresh_partners()
   cand_i.clear();
   cand_j.clear();
   const double skin = neighbor->skin;
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int a = list->ilist[ii];
-    if (a >= nlocal) continue;
-    const int *jlist = list->firstneigh[a];
-    for (int jj = 0; jj < list->numneigh[a]; jj++) {
-      int i, j;
-      if (!owned_pair(a, jlist[jj] & NEIGHMASK, nlocal, tag, i, j)) continue;
-      const LatticeBondRecord *r = fix_store->records(i);
-      const int nr = fix_store->nrec[i];
-      const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
-      const double reach = radius[i] + radius[j] + skin;
-      if (delx * delx + dely * dely + delz * delz >= reach * reach) continue;
-      bool seen = false;
-      for (int s = 0; s < nr; s++)
-        if (r[s].partner == tag[j]) seen = true;
-      if (seen) continue;
-      cand_i.push_back(i);
-      cand_j.push_back(j);
-    }
-  }
+  for_each_owned_pair([&](int i, int j) {
+    const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
+    const double reach = radius[i] + radius[j] + skin;
+    if (delx * delx + dely * dely + delz * delz >= reach * reach) return;
+    if (has_record_with(i, tag[j])) return;
+    cand_i.push_back(i);
+    cand_j.push_back(j);
+  });
 }
 
 /* ----------------------------------------------------------------------

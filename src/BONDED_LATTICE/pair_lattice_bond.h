@@ -101,6 +101,8 @@ class PairLatticeBond : public Pair {
   void allocate();
   void warn_data_file_has_no_bonds();
   static bool owned_pair(int a, int b, int nlocal, const tagint *tag, int &i, int &j);
+  template <typename Visit> void for_each_owned_pair(Visit &&visit);
+  bool has_record_with(int i, tagint partner) const;
   void create_bonds();
   void refresh_partners();
   void detect_new_contacts();
