@@ -11,6 +11,7 @@
 #include "fix_lattice_bond_store.h"
 #include "fix_lattice_viscous.h"
 #include "fix_lattice_wall.h"
+#include "lattice_bonds_io.h"
 #include "lammps.h"
 #include "pair_lattice_bond.h"
 #include "bonded_lattice_version.h"
@@ -50,7 +51,8 @@ class CommandBondedLatticeInfo : public Command {
     if (comm->me == 0)
       utils::logmesg(lmp,
                      "BONDED_LATTICE {} (built for LAMMPS {}): pair_style lattice/bond, fix "
-                     "lattice/viscous, fix lattice/wall, compute lattice/bonds, compute lattice/energy\n",
+                     "lattice/viscous, fix lattice/wall, compute lattice/bonds, compute lattice/energy, "
+                     "write_lattice_bonds, read_lattice_bonds\n",
                      BONDED_LATTICE_VERSION, BONDED_LATTICE_LAMMPS_VERSION);
   }
 };
@@ -63,6 +65,8 @@ Compute *compute_bonds_creator(LAMMPS *lmp, int narg, char **arg) { return new C
 Compute *compute_energy_creator(LAMMPS *lmp, int narg, char **arg) { return new ComputeLatticeEnergy(lmp, narg, arg); }
 Fix *fix_energy_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeEnergy(lmp, narg, arg); }
 Command *info_creator(LAMMPS *lmp) { return new CommandBondedLatticeInfo(lmp); }
+Command *write_bonds_creator(LAMMPS *lmp) { return new WriteLatticeBonds(lmp); }
+Command *read_bonds_creator(LAMMPS *lmp) { return new ReadLatticeBonds(lmp); }
 
 }    // namespace
 
@@ -115,5 +119,15 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "bonded_lattice/" BONDED_LATTICE_VERSION;
   plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " version and style list";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &info_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "write_lattice_bonds";
+  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " text export of the bond network";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &write_bonds_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.name = "read_lattice_bonds";
+  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " text import of the bond network";
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &read_bonds_creator;
   (*register_plugin)(&plugin, lmp);
 }

@@ -188,14 +188,7 @@ void PairLatticeBond::init_style()
                "computed once and its force reaches the partner by reverse communication");
   if (!allocated) error->all(FLERR, "pair_style lattice/bond has no pair_coeff: give one for every type pair");
 
-  // partners are found by tag: create the global-to-local map if the
-  // input did not ask for one (atom_modify map)
-  if (atom->map_style == Atom::MAP_NONE) {
-    if (atom->map_user == Atom::MAP_NONE) atom->map_user = Atom::MAP_YES;
-    atom->map_init();
-    atom->map_set();
-    own_map = 1;
-  }
+  ensure_atom_map();
 
   // which physics the type pairs use: the force loop is compiled for it
   const int nt = atom->ntypes;
@@ -242,18 +235,42 @@ void PairLatticeBond::init_style()
     cut_global = cut_auto > 0.0 ? cut_auto : 1.0;
   }
 
-  // the companion fix that keeps the records; created at the first run so
-  // that a fix restored by read_restart picks up its per-atom data
+  acquire_store();
+
+  // a half list that holds each local-ghost pair on both ranks: the rank of
+  // the lower tag finds every pair it must own (half the memory of a full list)
+  neighbor->add_request(this, NeighConst::REQ_NEWTON_OFF);
+}
+
+/* ----------------------------------------------------------------------
+   partners are found by tag: create the global-to-local map if the input
+   did not ask for one (atom_modify map)
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::ensure_atom_map()
+{
+  if (atom->map_style != Atom::MAP_NONE) return;
+  if (atom->map_user == Atom::MAP_NONE) atom->map_user = Atom::MAP_YES;
+  atom->map_init();
+  atom->map_set();
+  own_map = 1;
+}
+
+/* ----------------------------------------------------------------------
+   the companion fix that keeps the records; created at the first run (or by
+   read_lattice_bonds) so that a fix restored by read_restart picks up its
+   per-atom data
+------------------------------------------------------------------------- */
+
+FixLatticeBondStore *PairLatticeBond::acquire_store()
+{
   fix_store = dynamic_cast<FixLatticeBondStore *>(modify->get_fix_by_id(store_id));
   if (!fix_store)
     fix_store = dynamic_cast<FixLatticeBondStore *>(
         modify->add_fix(fmt::format("{} all LATTICE/BOND/STORE {}", store_id, maxslot)));
   if (!fix_store) error->all(FLERR, "pair_style lattice/bond could not create its record store");
   if (fix_store->maxslot != maxslot) fix_store->set_maxslot(maxslot);
-
-  // a half list that holds each local-ghost pair on both ranks: the rank of
-  // the lower tag finds every pair it must own (half the memory of a full list)
-  neighbor->add_request(this, NeighConst::REQ_NEWTON_OFF);
+  return fix_store;
 }
 
 /* ---------------------------------------------------------------------- */

@@ -58,6 +58,8 @@ class PairLatticeBond : public Pair {
   };
 
   FixLatticeBondStore *store() const { return fix_store; }
+  FixLatticeBondStore *acquire_store();    // find or create the record store
+  void ensure_atom_map();                  // a tag -> index map, created if absent
   // local/ghost index of each record's partner, -1 if absent: record s of
   // atom i at partner_index()[i * partner_index_stride() + s]
   const int *partner_index() const { return partner_idx; }

@@ -1,0 +1,236 @@
+/* ----------------------------------------------------------------------
+   BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
+   Text export and import of the bond network (see lattice_bonds_io.h).
+
+   File: comment lines starting with #, then one line per record,
+       owner partner state shear_x shear_y shear_z
+   owner < partner are atom IDs, state is intact, tension (broken in
+   tension), shear (broken in shear) or contact (never bonded), shear the
+   shear-spring displacement (force on the owner -Ks * shear).  Lines are
+   sorted by owner and partner, numbers written with 17 digits.
+------------------------------------------------------------------------- */
+
+#include "lattice_bonds_io.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "fix_lattice_bond_store.h"
+#include "force.h"
+#include "pair_lattice_bond.h"
+#include "update.h"
+#include "utils.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+static constexpr int FILE_FORMAT = 1;
+static const char *const STATE_NAMES[4] = {"intact", "tension", "shear", "contact"};
+static constexpr int VALUES = 6;    // owner partner state shear[3], as doubles
+
+static PairLatticeBond *lattice_pair(LAMMPS *lmp, const char *command)
+{
+  auto *pair = dynamic_cast<PairLatticeBond *>(lmp->force->pair_match("lattice/bond", 1));
+  if (!pair)
+    lmp->error->all(FLERR, "{} needs pair_style lattice/bond (the bond network belongs to it)",
+                    command);
+  return pair;
+}
+
+/* ----------------------------------------------------------------------
+   write_lattice_bonds file
+------------------------------------------------------------------------- */
+
+void WriteLatticeBonds::command(int narg, char **arg)
+{
+  if (narg != 1) error->all(FLERR, "write_lattice_bonds needs one argument: the file name");
+  PairLatticeBond *pair = lattice_pair(lmp, "write_lattice_bonds");
+  FixLatticeBondStore *store = pair->store();
+  if (!store || !store->bonds_created)
+    error->all(FLERR, "write_lattice_bonds: there is no bond network yet; the bonds are made at "
+               "the first run (use 'run 0' first)");
+
+  // every rank's records as doubles (IDs fit exactly), gathered on rank 0
+  std::vector<double> mine;
+  const tagint *tag = atom->tag;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const LatticeBondRecord *r = store->records(i);
+    for (int s = 0; s < store->nrec[i]; s++)
+      mine.insert(mine.end(), {(double) tag[i], (double) r[s].partner, (double) r[s].state,
+                               r[s].shear[0], r[s].shear[1], r[s].shear[2]});
+  }
+  int count = (int) mine.size();
+  std::vector<int> counts(comm->nprocs), offsets(comm->nprocs, 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, world);
+  std::vector<double> all;
+  if (comm->me == 0) {
+    for (int p = 1; p < comm->nprocs; p++) offsets[p] = offsets[p - 1] + counts[p - 1];
+    all.resize(offsets.back() + counts.back());
+  }
+  MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
+              MPI_DOUBLE, 0, world);
+  if (comm->me != 0) return;
+
+  const size_t n = all.size() / VALUES;
+  std::vector<size_t> order(n);
+  for (size_t k = 0; k < n; k++) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    if (all[VALUES * a] != all[VALUES * b]) return all[VALUES * a] < all[VALUES * b];
+    return all[VALUES * a + 1] < all[VALUES * b + 1];
+  });
+  std::array<bigint, 4> per_state = {0, 0, 0, 0};
+  for (size_t k = 0; k < n; k++) per_state[(int) all[VALUES * k + 2]]++;
+
+  FILE *fp = fopen(arg[0], "w");
+  if (!fp) error->one(FLERR, "write_lattice_bonds: cannot open file {}: {}", arg[0],
+                      utils::getsyserror());
+  utils::print(fp, "# BONDED_LATTICE bond network, format {}\n", FILE_FORMAT);
+  utils::print(fp, "# written at step {} by LAMMPS {}\n", update->ntimestep, lmp->version);
+  utils::print(fp, "# records {}: intact {}, tension {}, shear {}, contact {}\n", n, per_state[0],
+               per_state[1], per_state[2], per_state[3]);
+  utils::print(fp, "# owner partner state shear_x shear_y shear_z  (owner: the lower atom ID; "
+               "force on the owner -Ks * shear)\n");
+  for (size_t k : order) {
+    const double *v = &all[VALUES * k];
+    utils::print(fp, "{} {} {} {:.17g} {:.17g} {:.17g}\n", (tagint) v[0], (tagint) v[1],
+                 STATE_NAMES[(int) v[2]], v[3], v[4], v[5]);
+  }
+  fclose(fp);
+  utils::logmesg(lmp, "write_lattice_bonds: {} records to {}\n", n, arg[0]);
+}
+
+/* ----------------------------------------------------------------------
+   read_lattice_bonds file: before the first run, instead of creating the
+   bonds from the particles' positions
+------------------------------------------------------------------------- */
+
+void ReadLatticeBonds::command(int narg, char **arg)
+{
+  if (narg != 1) error->all(FLERR, "read_lattice_bonds needs one argument: the file name");
+  if (!atom->tag_enable) error->all(FLERR, "read_lattice_bonds needs atom IDs");
+  PairLatticeBond *pair = lattice_pair(lmp, "read_lattice_bonds");
+  pair->ensure_atom_map();
+  FixLatticeBondStore *store = pair->acquire_store();
+  if (store->bonds_created)
+    error->all(FLERR, "read_lattice_bonds: a bond network exists already (made by a run or "
+               "read from a restart file); read the bonds right after read_data and pair_style");
+
+  // rank 0 parses the file, every rank gets the records
+  std::vector<double> values;
+  int ok = 1;
+  std::string problem;
+  if (comm->me == 0) {
+    FILE *fp = fopen(arg[0], "r");
+    if (!fp) {
+      ok = 0;
+      problem = fmt::format("cannot open file {}: {}", arg[0], utils::getsyserror());
+    } else {
+      char line[512];
+      int lineno = 0, header = 0;
+      while (ok && fgets(line, sizeof(line), fp)) {
+        lineno++;
+        std::string text = utils::trim(line);
+        if (text.empty()) continue;
+        if (text[0] == '#') {
+          if (text.find("BONDED_LATTICE bond network, format") != std::string::npos) {
+            header = 1;
+            if (text.find(fmt::format("format {}", FILE_FORMAT)) == std::string::npos) {
+              ok = 0;
+              problem = fmt::format("line {}: unknown format ({}); this version reads format {}",
+                                    lineno, text, FILE_FORMAT);
+            }
+          }
+          continue;
+        }
+        if (!header) {
+          ok = 0;
+          problem = fmt::format("line {} comes before the header line '# BONDED_LATTICE bond "
+                                "network, format {}': not a write_lattice_bonds file", lineno,
+                                FILE_FORMAT);
+          break;
+        }
+        auto words = utils::split_words(text);
+        int state = -1;
+        if (words.size() == 6)
+          for (int k = 0; k < 4; k++)
+            if (words[2] == STATE_NAMES[k]) state = k;
+        double shear[3] = {0.0, 0.0, 0.0};
+        tagint owner = 0, partner = 0;
+        bool numbers = words.size() == 6 && utils::is_integer(words[0]) &&
+            utils::is_integer(words[1]);
+        for (int k = 0; numbers && k < 3; k++) {
+          numbers = utils::is_double(words[3 + k]);
+          if (numbers) shear[k] = std::stod(words[3 + k]);
+        }
+        if (numbers) {
+          owner = utils::tnumeric(FLERR, words[0], false, lmp);
+          partner = utils::tnumeric(FLERR, words[1], false, lmp);
+        }
+        if (!numbers || state < 0 || owner < 1 || partner <= owner ||
+            !std::isfinite(shear[0]) || !std::isfinite(shear[1]) || !std::isfinite(shear[2])) {
+          ok = 0;
+          problem = fmt::format("line {} is not 'owner partner state shear_x shear_y shear_z' "
+                                "with owner < partner, state intact, tension, shear or contact "
+                                "and finite shear: {}", lineno, text);
+          break;
+        }
+        values.insert(values.end(), {(double) owner, (double) partner, (double) state, shear[0],
+                                     shear[1], shear[2]});
+      }
+      fclose(fp);
+      if (ok && !header) {
+        ok = 0;
+        problem = fmt::format("{} has no header line '# BONDED_LATTICE bond network, format {}'",
+                              arg[0], FILE_FORMAT);
+      }
+    }
+  }
+  MPI_Bcast(&ok, 1, MPI_INT, 0, world);
+  if (!ok) {
+    if (comm->me == 0) error->one(FLERR, "read_lattice_bonds: {}", problem);
+    MPI_Barrier(world);
+  }
+  bigint n = (bigint) values.size();
+  MPI_Bcast(&n, 1, MPI_LMP_BIGINT, 0, world);
+  values.resize(n);
+  MPI_Bcast(values.data(), (int) n, MPI_DOUBLE, 0, world);
+
+  // each record goes to the rank that owns its owner atom; both atoms must exist
+  const bigint nrecords = n / VALUES;
+  bigint placed = 0, missing_partner = 0;
+  tagint first_missing = 0;
+  for (bigint k = 0; k < nrecords; k++) {
+    const double *v = &values[VALUES * k];
+    const int i = atom->map((tagint) v[0]);
+    if (i < 0 || i >= atom->nlocal) continue;
+    if ((tagint) v[1] > atom->map_tag_max) {    // beyond the largest atom ID
+      if (!missing_partner) first_missing = (tagint) v[1];
+      missing_partner++;
+    }
+    LatticeBondRecord *rec = store->add_record(i);
+    rec->partner = (tagint) v[1];
+    rec->state = (int) v[2];
+    for (int c = 0; c < 3; c++) rec->shear[c] = v[3 + c];
+    placed++;
+  }
+  bigint placed_all = 0, missing_all = 0;
+  MPI_Allreduce(&placed, &placed_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  MPI_Allreduce(&missing_partner, &missing_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (placed_all != nrecords)
+    error->all(FLERR, "read_lattice_bonds: {} of the {} records name an owner atom ID that does "
+               "not exist; the file does not belong to these atoms", nrecords - placed_all,
+               nrecords);
+  if (missing_all)
+    error->all(FLERR, "read_lattice_bonds: {} records name a partner atom ID that does not exist "
+               "(e.g. {}); the file does not belong to these atoms", missing_all, first_missing);
+  store->bonds_created = 1;
+  if (comm->me == 0)
+    utils::logmesg(lmp, "read_lattice_bonds: {} records from {} (no bonds are created from "
+                   "positions)\n", nrecords, arg[0]);
+}
