@@ -33,6 +33,8 @@ VALID = [
     ("fix side all lattice/wall xlo -0.5e-3 1.3e11 0 0 servo 20e6 4e-3 gain 0.5", 4),
     ("compute b all lattice/bonds peratom tension", 4),
     ("compute e all lattice/energy work all", 4),
+    ("write_lattice_bonds network.txt", 1),
+    ("read_lattice_bonds network.txt", 1),
 ]
 JUNK = ["abc", "-1", "0", "1e400", "nan", "-0.5", "2147483648", "v_nothere", "NULL",
         "xhi", "yes", "*", "1e-300", "peratom", "servo", "vel"]

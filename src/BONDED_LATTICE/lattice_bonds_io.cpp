@@ -207,6 +207,8 @@ void ReadLatticeBonds::command(int narg, char **arg)
   tagint first_missing = 0;
   for (bigint k = 0; k < nrecords; k++) {
     const double *v = &values[VALUES * k];
+    // the map holds IDs up to the largest one only: look nothing up beyond it
+    if ((tagint) v[0] > atom->map_tag_max) continue;
     const int i = atom->map((tagint) v[0]);
     if (i < 0 || i >= atom->nlocal) continue;
     if ((tagint) v[1] > atom->map_tag_max) {    // beyond the largest atom ID
