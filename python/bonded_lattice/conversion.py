@@ -262,19 +262,28 @@ def rock_to_bond(E: float, nu: float, Tu: float, Cu: float, mu_i: float, d: floa
     dim, d = _check_dim(dim), _positive("d", d)
     E, Tu, Cu = float(E), float(Tu), float(Cu)
     nu, mu_i = _check_nu(nu, dim), _check_mu_i(mu_i, dim)
-    try:
-        kn, ks, xb, fs0, mu_p = _rock_to_bond(E, nu, Tu, Cu, mu_i, d, dim)
-    except (ZeroDivisionError, OverflowError):
-        kn = ks = xb = fs0 = mu_p = math.nan
-    # inputs spanning too many orders of magnitude over- or underflow
-    for name, value in (("Kn", kn), ("Xb", xb), ("Fs0", fs0)):
-        if not (value > 0.0 and math.isfinite(value)):
-            raise ValueError(f"{name} = {value} follows from these properties and d, out of "
-                             f"range: need 0 < {name} < inf (the values over- or underflow)")
+    kn, ks, xb, fs0, mu_p = _closed_forms(_rock_to_bond, (E, nu, Tu, Cu, mu_i, d, dim),
+                                          ("Kn", "Ks", "Xb", "Fs0", "mu_p"), ("Kn", "Xb", "Fs0"),
+                                          "these properties and d")
     if not math.isfinite(ks):
         raise ValueError(f"Ks = {ks} follows from these properties and d: not finite")
     _warn_caveat(nu, Tu, Cu, mu_i, dim)
     return BondParameters(kn, ks, xb, fs0, mu_p)
+
+
+def _closed_forms(formulas, args: tuple, names: tuple[str, ...], positive: tuple[str, ...],
+                  source: str) -> tuple[float, ...]:
+    """formulas(*args) for checked inputs; the results named in ``positive`` must be
+    positive and finite (inputs spanning too many orders of magnitude over- or underflow)."""
+    try:
+        values = formulas(*args)
+    except (ZeroDivisionError, OverflowError):
+        values = (math.nan,) * len(names)
+    for name, value in zip(names, values):
+        if name in positive and not (value > 0.0 and math.isfinite(value)):
+            raise ValueError(f"{name} = {value} follows from {source}, out of range: need "
+                             f"0 < {name} < inf (the values over- or underflow)")
+    return values
 
 
 def _rock_to_bond(E: float, nu: float, Tu: float, Cu: float, mu_i: float, d: float,
@@ -317,14 +326,9 @@ def bond_to_rock(Kn: float, Ks: float, Xb: float, Fs0: float, mu_p: float, d: fl
     dim, d = _check_dim(dim), _positive("d", d)
     kn, ks = _check_stiffness(Kn, Ks, dim)
     xb, fs0, mu_p = float(Xb), float(Fs0), float(mu_p)
-    try:
-        E, nu, Tu, Cu, mu_i = _bond_to_rock(kn, ks, xb, fs0, mu_p, d, dim)
-    except (ZeroDivisionError, OverflowError):
-        E = nu = Tu = Cu = mu_i = math.nan
-    for name, value in (("E", E), ("Tu", Tu), ("Cu", Cu)):
-        if not (value > 0.0 and math.isfinite(value)):
-            raise ValueError(f"{name} = {value} follows from Kn, Ks, Xb, Fs0, mu_p and d, out of "
-                             f"range: need 0 < {name} < inf (the values over- or underflow)")
+    E, nu, Tu, Cu, mu_i = _closed_forms(_bond_to_rock, (kn, ks, xb, fs0, mu_p, d, dim),
+                                        ("E", "nu", "Tu", "Cu", "mu_i"), ("E", "Tu", "Cu"),
+                                        "Kn, Ks, Xb, Fs0, mu_p and d")
     _warn_caveat(nu, Tu, Cu, mu_i, dim)
     return RockProperties(E, nu, Tu, Cu, mu_i)
 

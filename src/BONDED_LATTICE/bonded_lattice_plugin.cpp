@@ -77,57 +77,29 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.version = ((LAMMPS *) lmp)->version;
   plugin.author = "bonded_lattice developers";
   plugin.handle = handle;
+  // the creator is a union: LAMMPS calls it with one argument (pair styles,
+  // commands) or three (fixes, computes) by the style, so one slot serves both
+  auto add = [&](const char *style, const char *name, const char *info, void *creator) {
+    plugin.style = style;
+    plugin.name = name;
+    plugin.info = info;
+    plugin.creator.v1 = (lammpsplugin_factory1 *) creator;
+    (*register_plugin)(&plugin, lmp);
+  };
+#define INFO(what) "BONDED_LATTICE " BONDED_LATTICE_VERSION " " what
 
-  plugin.style = "pair";
-  plugin.name = "lattice/bond";
-  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " pair style lattice/bond";
-  plugin.creator.v1 = (lammpsplugin_factory1 *) &pair_lattice_bond_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.style = "fix";
-  plugin.name = "LATTICE/BOND/STORE";
-  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " internal bond record store";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_store_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.name = "lattice/viscous";
-  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " fix lattice/viscous";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_viscous_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.name = "lattice/wall";
-  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " fix lattice/wall";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_wall_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.name = "LATTICE/ENERGY";
-  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " internal energy accounting";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_energy_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.style = "compute";
-  plugin.name = "lattice/bonds";
-  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " compute lattice/bonds";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &compute_bonds_creator;
-  (*register_plugin)(&plugin, lmp);
-  plugin.name = "lattice/energy";
-  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " compute lattice/energy";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &compute_energy_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.style = "command";
-  plugin.name = "bonded_lattice/" BONDED_LATTICE_VERSION;
-  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " version and style list";
-  plugin.creator.v1 = (lammpsplugin_factory1 *) &info_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.name = "write_lattice_bonds";
-  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " text export of the bond network";
-  plugin.creator.v1 = (lammpsplugin_factory1 *) &write_bonds_creator;
-  (*register_plugin)(&plugin, lmp);
-
-  plugin.name = "read_lattice_bonds";
-  plugin.info = "BONDED_LATTICE " BONDED_LATTICE_VERSION " text import of the bond network";
-  plugin.creator.v1 = (lammpsplugin_factory1 *) &read_bonds_creator;
-  (*register_plugin)(&plugin, lmp);
+  add("pair", "lattice/bond", INFO("pair style lattice/bond"), (void *) &pair_lattice_bond_creator);
+  add("fix", "LATTICE/BOND/STORE", INFO("internal bond record store"), (void *) &fix_store_creator);
+  add("fix", "lattice/viscous", INFO("fix lattice/viscous"), (void *) &fix_viscous_creator);
+  add("fix", "lattice/wall", INFO("fix lattice/wall"), (void *) &fix_wall_creator);
+  add("fix", "LATTICE/ENERGY", INFO("internal energy accounting"), (void *) &fix_energy_creator);
+  add("compute", "lattice/bonds", INFO("compute lattice/bonds"), (void *) &compute_bonds_creator);
+  add("compute", "lattice/energy", INFO("compute lattice/energy"), (void *) &compute_energy_creator);
+  add("command", "bonded_lattice/" BONDED_LATTICE_VERSION, INFO("version and style list"),
+      (void *) &info_creator);
+  add("command", "write_lattice_bonds", INFO("text export of the bond network"),
+      (void *) &write_bonds_creator);
+  add("command", "read_lattice_bonds", INFO("text import of the bond network"),
+      (void *) &read_bonds_creator);
+#undef INFO
 }

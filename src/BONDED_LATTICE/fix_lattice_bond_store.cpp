@@ -132,10 +132,18 @@ int FixLatticeBondStore::local_max_records() const
 
 /* ---------------------------------------------------------------------- */
 
-void FixLatticeBondStore::set_maxslot(int n)
+int FixLatticeBondStore::global_max_records() const
 {
   int most = local_max_records(), most_all = 0;
   MPI_Allreduce(&most, &most_all, 1, MPI_INT, MPI_MAX, world);
+  return most_all;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeBondStore::set_maxslot(int n)
+{
+  const int most_all = global_max_records();
   if (most_all > n)
     error->all(FLERR, "pair_style lattice/bond maxslot {} is too small: an atom holds {} bonds "
                "and contacts; use maxslot >= {}", n, most_all, most_all);

@@ -55,6 +55,7 @@ class FixLatticeBondStore : public Fix {
   void set_maxslot(int n);                 // new limit; error if an atom holds more
   void fit_capacity(int n);                // capacity = max(n, every atom's count) <= maxslot
   int local_max_records() const;
+  int global_max_records() const;          // over all ranks (collective)
   int update_displacements(double limit);  // disp = x - xlast, xlast = x (local atoms)
 
   int maxslot;           // most records an atom may hold (pair_style keyword)

@@ -44,6 +44,75 @@ static PairLatticeBond *lattice_pair(LAMMPS *lmp, const char *command)
 }
 
 /* ----------------------------------------------------------------------
+   one record line: owner partner state shear_x shear_y shear_z, with
+   0 < owner < partner, a known state and finite shear; false if it is not
+------------------------------------------------------------------------- */
+
+static bool parse_record(const std::string &text, double *record)
+{
+  const auto words = utils::split_words(text);
+  if (words.size() != VALUES || !utils::is_integer(words[0]) || !utils::is_integer(words[1]))
+    return false;
+  int state = -1;
+  for (int k = 0; k < 4; k++)
+    if (words[2] == STATE_NAMES[k]) state = k;
+  if (state < 0) return false;
+  const tagint owner = std::stoll(words[0]), partner = std::stoll(words[1]);
+  if (owner < 1 || partner <= owner) return false;
+  record[0] = (double) owner;
+  record[1] = (double) partner;
+  record[2] = state;
+  for (int k = 0; k < 3; k++) {
+    if (!utils::is_double(words[3 + k])) return false;
+    record[3 + k] = std::stod(words[3 + k]);
+    if (!std::isfinite(record[3 + k])) return false;
+  }
+  return true;
+}
+
+/* ----------------------------------------------------------------------
+   all records of a write_lattice_bonds file into values (VALUES each);
+   returns what is wrong with the file, or an empty string
+------------------------------------------------------------------------- */
+
+static std::string read_records(const char *path, std::vector<double> &values)
+{
+  FILE *fp = fopen(path, "r");
+  if (!fp) return fmt::format("cannot open file {}: {}", path, utils::getsyserror());
+  const std::string header_line = fmt::format("BONDED_LATTICE bond network, format {}", FILE_FORMAT);
+  std::string problem;
+  char line[512];
+  int lineno = 0, header = 0;
+  while (problem.empty() && fgets(line, sizeof(line), fp)) {
+    lineno++;
+    const std::string text = utils::trim(line);
+    if (text.empty()) continue;
+    if (text[0] == '#') {
+      if (text.find("BONDED_LATTICE bond network, format") == std::string::npos) continue;
+      header = 1;
+      if (text.find(header_line) == std::string::npos)
+        problem = fmt::format("line {}: unknown format ({}); this version reads format {}",
+                              lineno, text, FILE_FORMAT);
+      continue;
+    }
+    double record[VALUES];
+    if (!header)
+      problem = fmt::format("line {} comes before the header line '# {}': not a "
+                            "write_lattice_bonds file", lineno, header_line);
+    else if (!parse_record(text, record))
+      problem = fmt::format("line {} is not 'owner partner state shear_x shear_y shear_z' with "
+                            "owner < partner, state intact, tension, shear or contact and "
+                            "finite shear: {}", lineno, text);
+    else
+      values.insert(values.end(), record, record + VALUES);
+  }
+  fclose(fp);
+  if (problem.empty() && !header)
+    problem = fmt::format("{} has no header line '# {}'", path, header_line);
+  return problem;
+}
+
+/* ----------------------------------------------------------------------
    write_lattice_bonds file
 ------------------------------------------------------------------------- */
 
@@ -123,74 +192,9 @@ void ReadLatticeBonds::command(int narg, char **arg)
 
   // rank 0 parses the file, every rank gets the records
   std::vector<double> values;
-  int ok = 1;
   std::string problem;
-  if (comm->me == 0) {
-    FILE *fp = fopen(arg[0], "r");
-    if (!fp) {
-      ok = 0;
-      problem = fmt::format("cannot open file {}: {}", arg[0], utils::getsyserror());
-    } else {
-      char line[512];
-      int lineno = 0, header = 0;
-      while (ok && fgets(line, sizeof(line), fp)) {
-        lineno++;
-        std::string text = utils::trim(line);
-        if (text.empty()) continue;
-        if (text[0] == '#') {
-          if (text.find("BONDED_LATTICE bond network, format") != std::string::npos) {
-            header = 1;
-            if (text.find(fmt::format("format {}", FILE_FORMAT)) == std::string::npos) {
-              ok = 0;
-              problem = fmt::format("line {}: unknown format ({}); this version reads format {}",
-                                    lineno, text, FILE_FORMAT);
-            }
-          }
-          continue;
-        }
-        if (!header) {
-          ok = 0;
-          problem = fmt::format("line {} comes before the header line '# BONDED_LATTICE bond "
-                                "network, format {}': not a write_lattice_bonds file", lineno,
-                                FILE_FORMAT);
-          break;
-        }
-        auto words = utils::split_words(text);
-        int state = -1;
-        if (words.size() == 6)
-          for (int k = 0; k < 4; k++)
-            if (words[2] == STATE_NAMES[k]) state = k;
-        double shear[3] = {0.0, 0.0, 0.0};
-        tagint owner = 0, partner = 0;
-        bool numbers = words.size() == 6 && utils::is_integer(words[0]) &&
-            utils::is_integer(words[1]);
-        for (int k = 0; numbers && k < 3; k++) {
-          numbers = utils::is_double(words[3 + k]);
-          if (numbers) shear[k] = std::stod(words[3 + k]);
-        }
-        if (numbers) {
-          owner = utils::tnumeric(FLERR, words[0], false, lmp);
-          partner = utils::tnumeric(FLERR, words[1], false, lmp);
-        }
-        if (!numbers || state < 0 || owner < 1 || partner <= owner ||
-            !std::isfinite(shear[0]) || !std::isfinite(shear[1]) || !std::isfinite(shear[2])) {
-          ok = 0;
-          problem = fmt::format("line {} is not 'owner partner state shear_x shear_y shear_z' "
-                                "with owner < partner, state intact, tension, shear or contact "
-                                "and finite shear: {}", lineno, text);
-          break;
-        }
-        values.insert(values.end(), {(double) owner, (double) partner, (double) state, shear[0],
-                                     shear[1], shear[2]});
-      }
-      fclose(fp);
-      if (ok && !header) {
-        ok = 0;
-        problem = fmt::format("{} has no header line '# BONDED_LATTICE bond network, format {}'",
-                              arg[0], FILE_FORMAT);
-      }
-    }
-  }
+  if (comm->me == 0) problem = read_records(arg[0], values);
+  int ok = problem.empty() ? 1 : 0;
   MPI_Bcast(&ok, 1, MPI_INT, 0, world);
   if (!ok) {
     if (comm->me == 0) error->one(FLERR, "read_lattice_bonds: {}", problem);

@@ -384,9 +384,7 @@ void PairLatticeBond::create_bonds()
   MPI_Allreduce(&nbond_local, &nbond, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   fix_store->bonds_created = 1;
   // the exact room: contacts add more when they need it
-  int most = fix_store->local_max_records(), most_all = 0;
-  MPI_Allreduce(&most, &most_all, 1, MPI_INT, MPI_MAX, world);
-  fix_store->fit_capacity(most_all);
+  fix_store->fit_capacity(fix_store->global_max_records());
   if (comm->me == 0)
     utils::logmesg(lmp, "pair_style lattice/bond: created {} bonds between {} particles (mean "
                    "coordination {:.3f})\n", nbond, atom->natoms,

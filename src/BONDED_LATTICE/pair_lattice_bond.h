@@ -49,9 +49,6 @@ class PairLatticeBond : public Pair {
   int pack_reverse_comm(int, int, double *) override;
   void unpack_reverse_comm(int, int *, double *) override;
 
-  // critical time step found at the start of the last run (0: no bonds)
-  double critical_time_step() const { return dt_critical; }
-
   // bond parameters of one type pair (SI: N/m, N/m, m, N, -)
   struct BondParams {
     double kn, ks, xb, fs0, mu_p;
