@@ -66,7 +66,7 @@ velocity        top set {vtop} units box
 velocity        bottom set {vbottom} units box
 fix             ztop top setforce 0 0 0
 fix             zbot bottom setforce 0 0 0
-fix             nve all nve
+fix             nve all {integrator}
 fix             damp inner {damping}
 neighbor        {skin} bin
 timestep        {dt}
@@ -113,6 +113,8 @@ pair_style      lattice/bond
 pair_coeff      1 1 {{kn}} {{ks}} {{xb}} {{fs0}} {{mup}}
 """,
         damping="lattice/viscous 0.05",
+        # velocity Verlet compiled for 2D (x and y only, no fix enforce2d)
+        integrator="lattice/nve",
     ),
     # normal springs only (no shear); pair bpm/spring repels unbonded pairs
     "bpm/spring": bpm_model("bond", "mass            1 {mass}",
@@ -174,9 +176,10 @@ def build_input(name: str, cells: int, dim: int = 3) -> str:
         ax=ax, top=slab.format(lo=f"$(v_hi-{0.25 * D})", hi="INF"),
         bottom=slab.format(lo="INF", hi=f"$(v_lo+{0.25 * D})")))
     parts.append(spec["after"].format(**values))
+    integrator = spec.get("integrator", "nve")
     parts.append(LOADING.format(damping=spec["damping"], skin=0.1 * D, dt=p["dt"],
-                                vtop=v[0], vbottom=v[1]))
-    if dim == 2:
+                                vtop=v[0], vbottom=v[1], integrator=integrator))
+    if dim == 2 and integrator == "nve":
         parts.append("fix             plane all enforce2d\n")
     parts.append(spec.get("extra", ""))
     return "".join(parts)

@@ -64,6 +64,8 @@ CASES = {
     "wall face z in 2d": (pair() + "fix w all lattice/wall zlo 0 1 1 0\n", ["not allowed in a 2d"]),
     "wall negative Kn": (pair() + "fix w all lattice/wall ylo 0 -1 1 0\n", ["Kn = -1", "need Kn > 0"]),
     "wall negative mu": (pair() + "fix w all lattice/wall ylo 0 1 1 -0.2\n", ["mu = -0.2", "need mu >= 0"]),
+    "lattice/nve with an argument": (pair() + "fix n all lattice/nve 1.0\n",
+                                     ["Illegal fix lattice/nve command", "got 1 more"]),
     "too many records": (pair(style="maxslot 1"), ["more than maxslot = 1", "increase"]),
 }
 

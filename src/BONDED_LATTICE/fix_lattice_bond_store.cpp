@@ -34,7 +34,7 @@ static constexpr int CAPACITY_STEP = 2;    // small steps: memory follows need
 
 FixLatticeBondStore::FixLatticeBondStore(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), nrec(nullptr), rec(nullptr), xlast(nullptr), disp(nullptr),
-    bonds_created(0), nmax_store(0)
+    bonds_created(0), shear_layout(SHEAR_VECTOR), nmax_store(0)
 {
   if (narg != 4) error->all(FLERR, "Illegal fix {} command: expected one argument (maxslot)", style);
   maxslot = utils::inumeric(FLERR, arg[3], false, lmp);
@@ -163,11 +163,10 @@ int FixLatticeBondStore::update_displacements(double limit)
 {
   const int nlocal = atom->nlocal;
   if (nlocal == 0) return -1;
-  double *x = atom->x[0];
-  double *last = xlast[0];
-  double *d = disp[0];
-  const int n = 3 * nlocal;
   if (domain->triclinic) {
+    double *x = atom->x[0];
+    double *last = xlast[0];
+    double *d = disp[0];
     for (int i = 0; i < nlocal; i++) {
       double step[3] = {x[3 * i] - last[3 * i], x[3 * i + 1] - last[3 * i + 1],
                         x[3 * i + 2] - last[3 * i + 2]};
@@ -177,28 +176,51 @@ int FixLatticeBondStore::update_displacements(double limit)
         last[3 * i + k] = x[3 * i + k];
       }
     }
-  } else {
-    // orthogonal box: a step longer than half the box is a periodic jump
-    const int periodic[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
-    const double prd[3] = {domain->xprd, domain->yprd, domain->zprd};
-    for (int m = 0; m < n; m++) {
-      d[m] = x[m] - last[m];
-      last[m] = x[m];
-    }
-    for (int k = 0; k < 3; k++) {
-      if (!periodic[k]) continue;
-      const double half = 0.5 * prd[k];
-      for (int m = k; m < n; m += 3)
-        if (std::fabs(d[m]) > half) d[m] -= std::copysign(prd[k], d[m]);
-    }
+    return (limit > 0.0) ? first_beyond(limit, 3) : -1;
   }
-  if (limit <= 0.0) return -1;
-  // one cheap pass; the culprit is looked for only if there is one (NaN fails too)
+  // 2D: the force loop reads x and y only (z stays as set_arrays left it)
+  return (domain->dimension == 2) ? orthogonal_steps<2>(limit) : orthogonal_steps<3>(limit);
+}
+
+/* ----------------------------------------------------------------------
+   orthogonal box, DIM components, one pass: a step longer than half the
+   box along a periodic axis is a periodic jump
+------------------------------------------------------------------------- */
+
+template <int DIM> int FixLatticeBondStore::orthogonal_steps(double limit)
+{
+  const int nlocal = atom->nlocal;
+  const auto *const x = reinterpret_cast<const double(*)[3]>(atom->x[0]);
+  auto *const last = reinterpret_cast<double(*)[3]>(xlast[0]);
+  auto *const d = reinterpret_cast<double(*)[3]>(disp[0]);
+  // half the period along periodic axes, no jump along the others
+  const int periodic[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
+  const double prd[3] = {domain->xprd, domain->yprd, domain->zprd};
+  double half[3];
+  for (int k = 0; k < 3; k++) half[k] = periodic[k] ? 0.5 * prd[k] : HUGE_VAL;
   int ok = 1;
-  for (int m = 0; m < n; m++) ok &= (std::fabs(d[m]) <= limit);
-  if (ok) return -1;
-  for (int m = 0; m < n; m++)
-    if (!(std::fabs(d[m]) <= limit)) return m / 3;
+  for (int i = 0; i < nlocal; i++)
+    for (int k = 0; k < DIM; k++) {
+      double step = x[i][k] - last[i][k];
+      if (std::fabs(step) > half[k]) step -= std::copysign(prd[k], step);
+      d[i][k] = step;
+      last[i][k] = x[i][k];
+      ok &= (std::fabs(step) <= limit);    // false for NaN too
+    }
+  if (limit <= 0.0 || ok) return -1;
+  return first_beyond(limit, DIM);
+}
+
+/* ----------------------------------------------------------------------
+   the first local atom whose step exceeds limit along one of the first dim
+   axes (or is NaN), -1 if none
+------------------------------------------------------------------------- */
+
+int FixLatticeBondStore::first_beyond(double limit, int dim) const
+{
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int k = 0; k < dim; k++)
+      if (!(std::fabs(disp[i][k]) <= limit)) return i;
   return -1;
 }
 
@@ -336,18 +358,20 @@ int FixLatticeBondStore::maxsize_restart()
 }
 
 /* ----------------------------------------------------------------------
-   global part: format, whether the bonds exist, maxslot.  Files of the first
-   format (records with the old separation) start with the bonds_created flag,
-   0 or 1, and are rejected
+   global part: format, whether the bonds exist, maxslot, shear layout.
+   Files of the first format (records with the old separation) start with
+   the bonds_created flag, 0 or 1, and are rejected; files of the second
+   format hold shear vectors, which a 2D run turns into scalars
 ------------------------------------------------------------------------- */
 
 void FixLatticeBondStore::write_restart(FILE *fp)
 {
   if (comm->me == 0) {
-    double list[3] = {(double) RESTART_FORMAT, (double) bonds_created, (double) maxslot};
+    double list[4] = {(double) RESTART_FORMAT, (double) bonds_created, (double) maxslot,
+                      (double) shear_layout};
     int size = sizeof(list);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), 3, fp);
+    fwrite(list, sizeof(double), 4, fp);
   }
 }
 
@@ -356,13 +380,14 @@ void FixLatticeBondStore::write_restart(FILE *fp)
 void FixLatticeBondStore::restart(char *buf)
 {
   auto list = (double *) buf;
-  if (static_cast<int>(list[0]) != RESTART_FORMAT)
+  const int format = static_cast<int>(list[0]);
+  if (format != RESTART_FORMAT && format != 2)
     error->all(FLERR, "This restart file holds pair_style lattice/bond records in format {} "
-               "(an older BONDED_LATTICE version); this version reads format {}. Rerun the "
-               "model from its data file, or write the restart again with the version that "
-               "made it", static_cast<int>(list[0]) < 2 ? 1 : static_cast<int>(list[0]),
-               RESTART_FORMAT);
+               "(an older BONDED_LATTICE version); this version reads formats 2 and {}. Rerun "
+               "the model from its data file, or write the restart again with the version that "
+               "made it", format < 2 ? 1 : format, RESTART_FORMAT);
   bonds_created = static_cast<int>(list[1]);
+  shear_layout = (format == 2) ? SHEAR_VECTOR : static_cast<int>(list[3]);
 }
 
 /* ---------------------------------------------------------------------- */

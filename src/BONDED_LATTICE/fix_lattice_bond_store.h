@@ -65,13 +65,22 @@ class FixLatticeBondStore : public Fix {
   double **xlast;        // position at the last force evaluation (local atoms)
   double **disp;         // displacement since then (local atoms; ghosts by forward comm)
   int bonds_created;     // 1 once the initial bonds exist; never reset (survives restart)
+  // how the records hold the shear spring: SHEAR_VECTOR, a 3-vector in the
+  // tangent plane (3D; also 2D records read from a bond file or an older
+  // restart file, until the pair style turns them into scalars), or
+  // SHEAR_PLANAR, the signed length along t = z x n in shear[0] (2D)
+  enum { SHEAR_VECTOR = 0, SHEAR_PLANAR = 1 };
+  int shear_layout;
 
  private:
   int nmax_store;
   static constexpr int RECORD_DOUBLES = 5;    // packed size of one record
   static constexpr int ATOM_DOUBLES = 4;      // count + xlast
-  static constexpr int RESTART_FORMAT = 2;    // 1: records with the old separation
+  // 1: records with the old separation; 2: no shear layout (vectors)
+  static constexpr int RESTART_FORMAT = 3;
   void set_capacity(int n);
+  template <int DIM> int orthogonal_steps(double limit);
+  int first_beyond(double limit, int dim) const;
   int pack_atom(int, double *) const;
   int unpack_atom(int, const double *);
 };

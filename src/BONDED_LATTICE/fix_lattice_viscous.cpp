@@ -14,6 +14,7 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 #include "update.h"
 
@@ -77,41 +78,38 @@ void FixLatticeViscous::post_force(int /*vflag*/)
 
 void FixLatticeViscous::damp(bool step_taken)
 {
-  double **v = atom->v;
-  double **f = atom->f;
+  // 2D: x and y only (the z velocity of a 2D particle is zero)
+  if (domain->dimension == 2) damp_components<2>(step_taken);
+  else damp_components<3>(step_taken);
+  fdamp_valid = 1;
+}
+
+template <int DIM> void FixLatticeViscous::damp_components(bool step_taken)
+{
+  const auto *const v = reinterpret_cast<const double(*)[3]>(atom->v[0]);
+  auto *const f = reinterpret_cast<double(*)[3]>(atom->f[0]);
+  auto *const h = reinterpret_cast<double(*)[3]>(hist[0]);
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
+  if (nlocal == 0) return;
   if (tally_flag && step_taken) {
     double work = 0.0;
     for (int i = 0; i < nlocal; i++)
       if (mask[i] & groupbit) {
-        const double fx = -eta * v[i][0], fy = -eta * v[i][1], fz = -eta * v[i][2];
-        work += (hist[i][0] + fx) * v[i][0] + (hist[i][1] + fy) * v[i][1] +
-            (hist[i][2] + fz) * v[i][2];
+        double wi = 0.0;
+        for (int k = 0; k < DIM; k++) wi += (h[i][k] - eta * v[i][k]) * v[i][k];
+        work += wi;
       }
     heat -= 0.5 * update->dt * work;
   }
-  if (igroup == 0) {
-    // group all: one straight pass over the contiguous arrays
-    const double *vv = v[0];
-    double *ff = f[0], *hh = hist[0];
-    const int n = 3 * nlocal;
-    for (int m = 0; m < n; m++) {
-      hh[m] = -eta * vv[m];
-      ff[m] += hh[m];
+  const bool all = (igroup == 0);    // group all: no mask test
+  for (int i = 0; i < nlocal; i++) {
+    if (!all && !(mask[i] & groupbit)) continue;
+    for (int k = 0; k < DIM; k++) {
+      h[i][k] = -eta * v[i][k];
+      f[i][k] += h[i][k];
     }
-  } else {
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit) {
-        hist[i][0] = -eta * v[i][0];
-        hist[i][1] = -eta * v[i][1];
-        hist[i][2] = -eta * v[i][2];
-        f[i][0] += hist[i][0];
-        f[i][1] += hist[i][1];
-        f[i][2] += hist[i][2];
-      }
   }
-  fdamp_valid = 1;
 }
 
 /* ----------------------------------------------------------------------

@@ -39,6 +39,7 @@ class FixLatticeViscous : public FixLatticeAtomHistory {
   int fdamp_valid;    // 1 once fdamp holds a step's force
 
   void damp(bool step_taken);
+  template <int DIM> void damp_components(bool step_taken);
 };
 
 }    // namespace LAMMPS_NS

@@ -128,12 +128,22 @@ void WriteLatticeBonds::command(int narg, char **arg)
   // every rank's records as doubles (IDs fit exactly), gathered on rank 0
   std::vector<double> mine;
   const tagint *tag = atom->tag;
+  bigint unknown = 0;
   for (int i = 0; i < atom->nlocal; i++) {
     const LatticeBondRecord *r = store->records(i);
-    for (int s = 0; s < store->nrec[i]; s++)
+    for (int s = 0; s < store->nrec[i]; s++) {
+      double sh[3];
+      if (!pair->shear_vector(i, s, sh)) unknown++;
       mine.insert(mine.end(), {(double) tag[i], (double) r[s].partner, (double) r[s].state,
-                               r[s].shear[0], r[s].shear[1], r[s].shear[2]});
+                               sh[0], sh[1], sh[2]});
+    }
   }
+  bigint unknown_all = 0;
+  MPI_Allreduce(&unknown, &unknown_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (unknown_all)
+    error->all(FLERR, "write_lattice_bonds: {} loaded 2D shear springs have their partner atom "
+               "neither on the owner's rank nor among its ghosts, so their direction is unknown; "
+               "write the bonds right after a run (or 'run 0')", unknown_all);
   int count = (int) mine.size();
   std::vector<int> counts(comm->nprocs), offsets(comm->nprocs, 0);
   MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, world);
@@ -236,6 +246,8 @@ void ReadLatticeBonds::command(int narg, char **arg)
     error->all(FLERR, "read_lattice_bonds: {} records name a partner atom ID that does not exist "
                "(e.g. {}); the file does not belong to these atoms", missing_all, first_missing);
   store->bonds_created = 1;
+  // the file holds vectors; a 2D run turns them into signed lengths
+  store->shear_layout = FixLatticeBondStore::SHEAR_VECTOR;
   if (comm->me == 0)
     utils::logmesg(lmp, "read_lattice_bonds: {} records from {} (no bonds are created from "
                    "positions)\n", nrecords, arg[0]);

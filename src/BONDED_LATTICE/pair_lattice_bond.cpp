@@ -383,6 +383,7 @@ void PairLatticeBond::create_bonds()
   bigint nbond = 0;
   MPI_Allreduce(&nbond_local, &nbond, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   fix_store->bonds_created = 1;
+  if (domain->dimension == 2) fix_store->shear_layout = FixLatticeBondStore::SHEAR_PLANAR;
   // the exact room: contacts add more when they need it
   fix_store->fit_capacity(fix_store->global_max_records());
   if (comm->me == 0)
@@ -477,6 +478,59 @@ void PairLatticeBond::refresh_partners()
     cand_i.push_back(i);
     cand_j.push_back(j);
   });
+}
+
+/* ----------------------------------------------------------------------
+   2D: shear springs stored as vectors in the tangent plane (bond files,
+   restart files of format 2) become signed lengths along t = z x n, with
+   the sign of their projection on t and their length kept
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::planar_springs_from_vectors()
+{
+  double **x = atom->x;
+  for (int i = 0; i < atom->nlocal; i++) {
+    LatticeBondRecord *r = fix_store->records(i);
+    const int *idx = partner_idx + (bigint) i * partner_stride;
+    for (int s = 0; s < fix_store->nrec[i]; s++) {
+      double *sh = r[s].shear;
+      const double len = sqrt(sh[0] * sh[0] + sh[1] * sh[1] + sh[2] * sh[2]);
+      const int j = idx[s];
+      double sig = 0.0;
+      if (j >= 0 && len > 0.0) {
+        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1];
+        // sign of s . t with t = (-dy, dx) / r: the length r does not matter
+        sig = (dx * sh[1] - dy * sh[0] >= 0.0) ? len : -len;
+      }
+      sh[0] = sig;
+      sh[1] = sh[2] = 0.0;
+    }
+  }
+  fix_store->shear_layout = FixLatticeBondStore::SHEAR_PLANAR;
+}
+
+/* ----------------------------------------------------------------------
+   the shear spring of record s of local atom i as a vector (force on the
+   owner -Ks times it): 2D springs are stored as signed lengths along
+   t = z x n.  False if the partner of a loaded 2D spring is not on this
+   rank (its direction is then unknown)
+------------------------------------------------------------------------- */
+
+bool PairLatticeBond::shear_vector(int i, int s, double *out) const
+{
+  const LatticeBondRecord &r = fix_store->records(i)[s];
+  for (int k = 0; k < 3; k++) out[k] = r.shear[k];
+  if (fix_store->shear_layout != FixLatticeBondStore::SHEAR_PLANAR || r.shear[0] == 0.0) return true;
+  int j = atom->map(r.partner);
+  if (j >= 0) j = domain->closest_image(i, j);
+  if (j < 0 || atom->tag[j] != r.partner) return false;
+  double **x = atom->x;
+  const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1];
+  const double rinv = 1.0 / sqrt(dx * dx + dy * dy);
+  out[0] = -r.shear[0] * dy * rinv;
+  out[1] = r.shear[0] * dx * rinv;
+  out[2] = 0.0;
+  return true;
 }
 
 /* ----------------------------------------------------------------------
@@ -624,7 +678,11 @@ void PairLatticeBond::compute(int eflag, int vflag)
     create_bonds();
     rebuilt = true;
   }
-  if (rebuilt) refresh_partners();
+  // 2D records read from a bond file or an older restart file hold vectors
+  const bool convert = domain->dimension == 2 &&
+      fix_store->shear_layout == FixLatticeBondStore::SHEAR_VECTOR;
+  if (rebuilt || convert) refresh_partners();
+  if (convert) planar_springs_from_vectors();
   if (!cand_i.empty()) detect_new_contacts();
 
   // each particle's displacement over this step, ghosts included; outside
@@ -653,9 +711,10 @@ void PairLatticeBond::compute(int eflag, int vflag)
 
 int PairLatticeBond::scene_features() const
 {
-  if (evflag) return LB_EV | LB_SHEAR_SOME | LB_FRICTION | (tally_flag ? LB_TALLY : 0);
-  int features = tally_flag ? LB_TALLY : 0;
-  if (domain->dimension == 2) features |= LB_PLANAR;
+  // 2D records hold signed scalar springs: every 2D loop is planar
+  const int planar = (domain->dimension == 2) ? LB_PLANAR : 0;
+  if (evflag) return LB_EV | LB_SHEAR_SOME | LB_FRICTION | planar | (tally_flag ? LB_TALLY : 0);
+  int features = planar | (tally_flag ? LB_TALLY : 0);
   if (uniform_params) features |= LB_UNIFORM;
   if (shear_pairs == SHEAR_PAIRS_ALL) features |= LB_SHEAR_ALL;
   else if (shear_pairs == SHEAR_PAIRS_SOME) features |= LB_SHEAR_SOME;
@@ -669,7 +728,7 @@ int PairLatticeBond::scene_features() const
 
 template <int F> constexpr PairLatticeBond::EvalFn PairLatticeBond::eval_entry()
 {
-  constexpr int GENERAL = LB_SHEAR_SOME | LB_FRICTION | (F & (LB_EV | LB_TALLY));
+  constexpr int GENERAL = LB_SHEAR_SOME | LB_FRICTION | (F & (LB_EV | LB_TALLY | LB_PLANAR));
   constexpr bool both_shear = (F & LB_SHEAR_ALL) && (F & LB_SHEAR_SOME);
   if constexpr ((F & LB_EV) || both_shear) return &PairLatticeBond::eval<GENERAL>;
   else return &PairLatticeBond::eval<F>;
@@ -756,6 +815,9 @@ template <int F> void PairLatticeBond::eval()
       const double ddx = dxi - disp[j][0], ddy = dyi - disp[j][1];
       const double ddz = PLANAR ? 0.0 : dzi - disp[j][2];
 
+      // 2D: the tangential part of it along t = z x n = (-ny, nx)
+      const double dtan = PLANAR ? ddy * nx - ddx * ny : 0.0;
+
       int state = b.state;
       if (state == LB_INTACT && xn > p.xb) {
         // tensile break: both springs let go
@@ -763,13 +825,14 @@ template <int F> void PairLatticeBond::eval()
         state = LB_BROKEN_TENSION;
         if (TALLY) {
           q_break_n += normal_release(radi + radius[j], p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
-          q_break_s += spring_release(b, p.ks, ddx, ddy, ddz);
+          q_break_s += PLANAR ? planar_release(b, p.ks, dtan) : spring_release(b, p.ks, ddx, ddy, ddz);
           b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
         }
       }
       if (state != LB_INTACT && xn >= 0.0) {
         // open contact: no force, no memory
-        if (TALLY) q_friction += spring_release(b, p.ks, ddx, ddy, ddz);
+        if (TALLY)
+          q_friction += PLANAR ? planar_release(b, p.ks, dtan) : spring_release(b, p.ks, ddx, ddy, ddz);
         b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
         continue;
       }
@@ -790,8 +853,55 @@ template <int F> void PairLatticeBond::eval()
       }
 
       // a frictionless contact (closed, mu_p = 0 everywhere) has no shear spring
-      if (has_shear && (FRICTION || state == LB_INTACT)) {
-        double sx = b.shear[0], sy = b.shear[1], sz = PLANAR ? 0.0 : b.shear[2];
+      if (PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
+        // 2D: the spring is a signed length along t, which turns with the
+        // pair, so it needs no projection and keeps its length exactly
+        const double s1 = b.shear[0];
+        double sig = s1 + dtan;
+        int broke_now = 0;
+        const double fs2 = p.ks * p.ks * sig * sig;
+        if (state == LB_INTACT) {
+          const double limit = p.fs0 - p.mu_p * fn;    // intact-bond Coulomb limit
+          if (fs2 > limit * limit || limit < 0.0) {
+            b.state = LB_BROKEN_SHEAR;
+            state = LB_BROKEN_SHEAR;
+            broke_now = 1;
+          }
+        }
+        if (state != LB_INTACT) {
+          if (xn >= 0.0) {
+            // broken in shear while in tension: the contact is open
+            if (TALLY) {
+              q_break_n += normal_release(radi + radius[j], p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
+              q_break_s += planar_heat(p.ks, s1, dtan, 0.0);
+            }
+            b.shear[0] = 0.0;
+            continue;
+          }
+          if (FRICTION) {
+            const double limit = -p.mu_p * fn;    // sliding friction of a contact
+            if (fs2 > limit * limit) {
+              const double slid = std::copysign(limit / p.ks, sig);
+              if (TALLY) {
+                const double q = planar_heat(p.ks, s1, dtan, slid);
+                if (broke_now) q_break_s += q;
+                else q_friction += q;
+              }
+              sig = slid;
+            }
+          } else {
+            // broke in shear just now: a frictionless contact keeps no spring
+            if (TALLY) q_break_s += planar_heat(p.ks, s1, dtan, 0.0);
+            sig = 0.0;
+          }
+        }
+        b.shear[0] = sig;
+        // force on the owner -Ks sig t
+        fsx = p.ks * sig * ny;
+        fsy = -p.ks * sig * nx;
+        if (EVFLAG) es = 0.5 * p.ks * sig * sig;
+      } else if (!PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
+        double sx = b.shear[0], sy = b.shear[1], sz = b.shear[2];
         // rotate the spring into the new tangent plane: drop its normal part;
         // restoring its length matters only when the pair turned noticeably
         // in one step (relative change sn^2/|s|^2 > 1e-12), so test first
@@ -799,7 +909,7 @@ template <int F> void PairLatticeBond::eval()
         const double old2 = sx * sx + sy * sy + sz * sz;
         sx -= sn * nx;
         sy -= sn * ny;
-        if (!PLANAR) sz -= sn * nz;
+        sz -= sn * nz;
         if (sn * sn > 1.0e-12 * old2) {
           const double new2 = sx * sx + sy * sy + sz * sz;
           if (new2 > 0.0) {
@@ -811,7 +921,7 @@ template <int F> void PairLatticeBond::eval()
         }
         // add the tangential part of this step's relative displacement
         const double dn = ddx * nx + ddy * ny + ddz * nz;
-        const double tx = ddx - dn * nx, ty = ddy - dn * ny, tz = PLANAR ? 0.0 : ddz - dn * nz;
+        const double tx = ddx - dn * nx, ty = ddy - dn * ny, tz = ddz - dn * nz;
         const double s1x = sx, s1y = sy, s1z = sz;    // rotated old spring (for the heat)
         sx += tx;
         sy += ty;
@@ -868,7 +978,7 @@ template <int F> void PairLatticeBond::eval()
         b.shear[2] = sz;
         fsx = -p.ks * sx;
         fsy = -p.ks * sy;
-        fsz = PLANAR ? 0.0 : -p.ks * sz;
+        fsz = -p.ks * sz;
         if (EVFLAG) es = 0.5 * p.ks * (sx * sx + sy * sy + sz * sz);
       } else if (has_shear) {
         b.shear[0] = b.shear[1] = b.shear[2] = 0.0;    // a frictionless closed contact
@@ -945,6 +1055,21 @@ double PairLatticeBond::spring_release(const LatticeBondRecord &b, double ks, do
 }
 
 /* ----------------------------------------------------------------------
+   the same two heats for the signed 2D spring: Ks/2 [(s1 + s2) t - s2^2 + s1^2]
+   and its release (s2 = 0)
+------------------------------------------------------------------------- */
+
+double PairLatticeBond::planar_heat(double ks, double s1, double t, double s2)
+{
+  return 0.5 * ks * ((s1 + s2) * t - s2 * s2 + s1 * s1);
+}
+
+double PairLatticeBond::planar_release(const LatticeBondRecord &b, double ks, double t)
+{
+  return planar_heat(ks, b.shear[0], t, 0.0);
+}
+
+/* ----------------------------------------------------------------------
    forward communication: the step's displacements of the ghosts' owners
    (a displacement needs no periodic shift)
 ------------------------------------------------------------------------- */
@@ -953,13 +1078,10 @@ int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int /*pbc_
                                        int * /*pbc*/)
 {
   double **disp = fix_store->disp;
+  const int dim = domain->dimension;    // 2D: the force loop reads x and y only
   int m = 0;
-  for (int k = 0; k < n; k++) {
-    const int i = list[k];
-    buf[m++] = disp[i][0];
-    buf[m++] = disp[i][1];
-    buf[m++] = disp[i][2];
-  }
+  for (int k = 0; k < n; k++)
+    for (int c = 0; c < dim; c++) buf[m++] = disp[list[k]][c];
   return m;
 }
 
@@ -968,12 +1090,10 @@ int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int /*pbc_
 void PairLatticeBond::unpack_forward_comm(int n, int first, double *buf)
 {
   double **disp = fix_store->disp;
+  const int dim = domain->dimension;
   int m = 0;
-  for (int i = first; i < first + n; i++) {
-    disp[i][0] = buf[m++];
-    disp[i][1] = buf[m++];
-    disp[i][2] = buf[m++];
-  }
+  for (int i = first; i < first + n; i++)
+    for (int c = 0; c < dim; c++) disp[i][c] = buf[m++];
 }
 
 /* ----------------------------------------------------------------------

@@ -60,6 +60,9 @@ class PairLatticeBond : public Pair {
   // local/ghost index of each record's partner, -1 if absent: record s of
   // atom i at partner_index()[i * partner_index_stride() + s]
   const int *partner_index() const { return partner_idx; }
+  // shear spring of record s of local atom i as a vector (2D stores a signed
+  // length); false if a loaded 2D spring's partner is not on this rank
+  bool shear_vector(int i, int s, double *out) const;
   int partner_index_stride() const { return partner_stride; }
 
   // energy accounting (compute lattice/energy): heat released on this rank
@@ -106,6 +109,7 @@ class PairLatticeBond : public Pair {
   void refresh_partners();
   void detect_new_contacts();
   void relayout_partners();
+  void planar_springs_from_vectors();
   void check_time_step();
   [[noreturn]] void report_instability(int i);
   // compile-time features of the force loop (bits of its template argument)
@@ -131,6 +135,8 @@ class PairLatticeBond : public Pair {
   static double shear_heat(double ks, const double *s1, const double *t, const double *s2);
   static double spring_release(const struct LatticeBondRecord &, double ks, double tx, double ty,
                                double tz);
+  static double planar_heat(double ks, double s1, double t, double s2);
+  static double planar_release(const struct LatticeBondRecord &, double ks, double t);
 };
 
 }    // namespace LAMMPS_NS

@@ -1,0 +1,129 @@
+/* ----------------------------------------------------------------------
+   BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
+   fix lattice/nve: velocity Verlet for the particles' translations.
+
+   The lattice model's particles do not rotate, so only x and v are
+   integrated, with the same arithmetic as fix nve (v += dt/2 f/m, then
+   x += dt v): trajectories are identical to the last bit.  A loop compiled
+   for 2D updates x and y only, so that a 2D model needs no fix enforce2d
+   and pays for two components instead of three plus a second pass; the
+   group all takes a loop without the mask test.
+------------------------------------------------------------------------- */
+
+#include "fix_lattice_nve.h"
+
+#include "atom.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "update.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+/* ---------------------------------------------------------------------- */
+
+FixLatticeNVE::FixLatticeNVE(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), dtv(0.0), dtf(0.0)
+{
+  if (narg != 3)
+    error->all(FLERR, "Illegal fix lattice/nve command: expected 'fix ID group lattice/nve' "
+               "with no further arguments (got {} more)", narg - 3);
+  dynamic_group_allow = 1;
+  time_integrate = 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLatticeNVE::setmask()
+{
+  return INITIAL_INTEGRATE | FINAL_INTEGRATE;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeNVE::init()
+{
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    error->all(FLERR, "fix lattice/nve does not support run_style respa; use run_style verlet");
+  if (!atom->rmass_flag && !atom->mass_setflag)
+    error->all(FLERR, "fix lattice/nve needs particle masses: set them with 'set ... mass' "
+               "(atom_style sphere) or the mass command");
+  reset_dt();
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeNVE::reset_dt()
+{
+  dtv = update->dt;
+  dtf = 0.5 * update->dt * force->ftm2v;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeNVE::initial_integrate(int /*vflag*/)
+{
+  dispatch(true);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeNVE::final_integrate()
+{
+  dispatch(false);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeNVE::dispatch(bool drift)
+{
+  const bool planar = domain->dimension == 2;
+  const bool all = (igroup == 0);
+  const bool rmass = atom->rmass_flag && atom->rmass;
+  // one compiled loop per case: 2D or 3D, group all or not, per-atom or
+  // per-type mass, with or without the drift
+  using Kick = void (FixLatticeNVE::*)();
+  static constexpr Kick KICKS[16] = {
+      &FixLatticeNVE::kick<false, false, false, false>, &FixLatticeNVE::kick<false, false, false, true>,
+      &FixLatticeNVE::kick<false, false, true, false>,  &FixLatticeNVE::kick<false, false, true, true>,
+      &FixLatticeNVE::kick<false, true, false, false>,  &FixLatticeNVE::kick<false, true, false, true>,
+      &FixLatticeNVE::kick<false, true, true, false>,   &FixLatticeNVE::kick<false, true, true, true>,
+      &FixLatticeNVE::kick<true, false, false, false>,  &FixLatticeNVE::kick<true, false, false, true>,
+      &FixLatticeNVE::kick<true, false, true, false>,   &FixLatticeNVE::kick<true, false, true, true>,
+      &FixLatticeNVE::kick<true, true, false, false>,   &FixLatticeNVE::kick<true, true, false, true>,
+      &FixLatticeNVE::kick<true, true, true, false>,    &FixLatticeNVE::kick<true, true, true, true>};
+  (this->*KICKS[8 * planar + 4 * all + 2 * rmass + drift])();
+}
+
+/* ----------------------------------------------------------------------
+   half kick v += dt/2 f/m; with DRIFT also x += dt v
+------------------------------------------------------------------------- */
+
+template <bool PLANAR, bool ALL, bool RMASS, bool DRIFT> void FixLatticeNVE::kick()
+{
+  double *__restrict const x = atom->x[0];
+  double *__restrict const v = atom->v[0];
+  const double *__restrict const f = atom->f[0];
+  const double *const rmass = atom->rmass;
+  const double *const mass = atom->mass;
+  const int *const type = atom->type;
+  const int *const mask = atom->mask;
+  const int nlocal = (igroup == atom->firstgroup) ? atom->nfirst : atom->nlocal;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!ALL && !(mask[i] & groupbit)) continue;
+    const double dtfm = dtf / (RMASS ? rmass[i] : mass[type[i]]);
+    const int k = 3 * i;
+    v[k] += dtfm * f[k];
+    v[k + 1] += dtfm * f[k + 1];
+    if (!PLANAR) v[k + 2] += dtfm * f[k + 2];
+    if (DRIFT) {
+      x[k] += dtv * v[k];
+      x[k + 1] += dtv * v[k + 1];
+      if (!PLANAR) x[k + 2] += dtv * v[k + 2];
+    }
+  }
+}
