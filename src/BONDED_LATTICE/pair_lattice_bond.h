@@ -89,6 +89,8 @@ class PairLatticeBond : public Pair {
   int partner_stride;  // records per atom in partner_idx (the store's capacity)
   int own_map;                        // 1 if this style created the atom map
   double min_radius;                  // smallest particle radius (instability test)
+  double equal_radius;                // the radius if all particles have it, else 0
+  void find_equal_radius();
   double dt_critical;                 // see check_time_step()
   std::vector<double> stiffness_sum;  // per particle, for check_time_step()
   std::vector<int> cand_i, cand_j;    // unbonded pairs that may come into contact
@@ -121,7 +123,8 @@ class PairLatticeBond : public Pair {
     LB_SHEAR_ALL = 16,    // every type pair has a shear spring
     LB_SHEAR_SOME = 32,   // some type pairs have one (tested per record)
     LB_FRICTION = 64,     // some type pair has contact friction
-    LB_NFEATURES = 128
+    LB_EQUAL = 128,       // all particles have the same radius
+    LB_NFEATURES = 256
   };
   using EvalFn = void (PairLatticeBond::*)();
   int scene_features() const;
