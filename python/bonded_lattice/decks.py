@@ -251,7 +251,7 @@ velocity        all set 0 0 0 units box
 variable        s0 equal $(step)
 {variables}fix             ptop top move {move_top}
 fix             pbot bottom move {move_bot}
-fix             integrate inner nve
+fix             integrate inner lattice/nve    # velocity Verlet; in 2D x and y only
 fix             damp inner lattice/viscous {spec.eta:.6g}
 # stress (tension positive) from the force the block exerts on the end layers
 compute         ftop top reduce sum f{ax}
@@ -292,7 +292,7 @@ variable        stress equal 0.5*(c_fbot-c_ftop)/{spec.area:.8g}
 # ---- loading: smooth platens touching the end layers, {title} ----
 {variables}fix             bottom all lattice/wall {ax}lo {bottom}
 fix             top all lattice/wall {ax}hi {top}
-fix             integrate all nve
+fix             integrate all lattice/nve    # velocity Verlet; in 2D x and y only
 fix             damp all lattice/viscous {spec.eta:.6g}
 # stress (tension positive) from the platen forces
 variable        stress equal 0.5*(f_bottom[{k}]-f_top[{k}])/{spec.area:.8g}
