@@ -830,14 +830,17 @@ template <int F> void PairLatticeBond::eval()
     // the separations of all records first: their square roots and divisions
     // are independent, so the processor overlaps them instead of each record
     // waiting for its own (the loop is latency-bound, docs/performance.md)
-    double dist[MAX_RECORDS], dinv[MAX_RECORDS];
+    double dist[MAX_RECORDS], unit[3][MAX_RECORDS];
     for (int s = 0; s < nr; s++) {
       const int j = idx[s];
       const int jj = (j < 0) ? i : j;    // a far-away partner: any finite values
       const double sx = xi - x[jj][0], sy = yi - x[jj][1], sz = PLANAR ? 0.0 : zi - x[jj][2];
       const double rr = (j < 0) ? 1.0 : sqrt(sx * sx + sy * sy + sz * sz);
+      const double rinv = 1.0 / rr;
       dist[s] = rr;
-      dinv[s] = 1.0 / rr;
+      unit[0][s] = sx * rinv;
+      unit[1][s] = sy * rinv;
+      if (!PLANAR) unit[2][s] = sz * rinv;
     }
 
     for (int s = 0; s < nr; s++) {
@@ -847,10 +850,10 @@ template <int F> void PairLatticeBond::eval()
       const BondParams &p = UNIFORM ? p_uniform : prow[type[j]];
       const bool has_shear = SHEAR && (SHEAR_ALL || p.ks > 0.0);
 
+      // separation (used by the tallies only), its length and direction
       const double dx = xi - x[j][0], dy = yi - x[j][1], dz = PLANAR ? 0.0 : zi - x[j][2];
       const double rr = dist[s];
-      const double rinv = dinv[s];
-      const double nx = dx * rinv, ny = dy * rinv, nz = PLANAR ? 0.0 : dz * rinv;
+      const double nx = unit[0][s], ny = unit[1][s], nz = PLANAR ? 0.0 : unit[2][s];
       const double touch = EQUAL ? touch_equal : radi + radius[j];    // rest length
       const double xn = rr - touch;    // normal stretch, tension positive
       // this step's relative displacement (dx minus its value at the last step)
