@@ -14,6 +14,7 @@ what docs/performance.md records.
     python bench/run.py --quick     # about 11k particles in 3D and 2D, a few minutes
     python bench/run.py             # about 11k, 50k and 200k particles
     python bench/run.py --quick --features
+    python bench/run.py --repeat 3   # medians of three runs (a shared, noisy machine)
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from __future__ import annotations
 import argparse
 import datetime
 import json
+import statistics
 import subprocess
 import sys
 from pathlib import Path
@@ -54,6 +56,8 @@ def main() -> None:
     parser.add_argument("--features", action="store_true",
                         help="also the cost of each force-loop feature (1 rank, smallest size)")
     parser.add_argument("--no-memory", action="store_true", help="skip the memory pass")
+    parser.add_argument("--repeat", type=int, default=1,
+                        help="run every size and rank count this many times; report medians")
     args = parser.parse_args()
     from bench_throughput import FEATURE_MODELS
 
@@ -64,15 +68,21 @@ def main() -> None:
         for cells, steps in SIZES[dim]["quick" if args.quick else "full"]:
             steps = max(10, int(steps * args.steps_scale))
             for ranks in (1, 2):
-                results = {r["model"]: r for r in measure(cells, steps, ranks, dim, MODELS)}
-                ref = results["lattice/bond"]["rate"]
-                particles = results["lattice/bond"]["particles"]
+                # repeated runs: the median of each rate, and of each ratio taken
+                # within one run (the models of one run share the machine's load)
+                runs = [{r["model"]: r for r in measure(cells, steps, ranks, dim, MODELS)}
+                        for _ in range(args.repeat)]
+                rates = {m: statistics.median(run[m]["rate"] for run in runs) for m in MODELS}
+                ratios = {m: statistics.median(run["lattice/bond"]["rate"] / run[m]["rate"]
+                                               for run in runs) for m in MODELS}
+                particles = runs[0]["lattice/bond"]["particles"]
                 rows.append(dict(dim=dim, particles=particles, ranks=ranks, cells=cells,
-                                 rates={m: results[m]["rate"] for m in MODELS}))
+                                 rates=rates, ratios=ratios))
                 print(f"{dim}D {particles:8d} particles, {ranks} rank(s): "
-                      + ", ".join(f"{m} {results[m]['rate']:.3g}" for m in MODELS)
+                      + ", ".join(f"{m} {rates[m]:.3g}" for m in MODELS)
                       + " particle-steps/s; lattice/bond is "
-                      + ", ".join(f"{ref / results[m]['rate']:.2f}x {m}" for m in MODELS[1:]),
+                      + ", ".join(f"{ratios[m]:.2f}x {m}" for m in MODELS[1:])
+                      + (f" (median of {args.repeat})" if args.repeat > 1 else ""),
                       flush=True)
 
     # peak resident memory: one process per model (the peak never goes down), 1 rank
@@ -102,7 +112,8 @@ def main() -> None:
     print(f"\n{datetime.date.today()}, commit {git_commit(HERE, mark_changes=True)}, "
           f"{machine()}, "
           f"`python bench/run.py{' --quick' if args.quick else ''}"
-          f"{' --features' if args.features else ''}`\n")
+          f"{' --features' if args.features else ''}"
+          f"{f' --repeat {args.repeat}' if args.repeat > 1 else ''}`\n")
     print("| dim | particles | ranks | lattice/bond (particle-steps/s) | vs bpm/spring "
           "| vs bpm/rotational | two-rank efficiency |")
     print("|---|---|---|---|---|---|---|")
@@ -115,7 +126,7 @@ def main() -> None:
                        and r["ranks"] == 1)
             eff = f"{ref / (2 * one['rates']['lattice/bond']):.2f}"
         print(f"| {row['dim']}D | {row['particles']} | {row['ranks']} | {ref:.3g} | "
-              f"{ref / rates['bpm/spring']:.2f} | {ref / rates['bpm/rotational']:.1f} | {eff} |")
+              f"{row['ratios']['bpm/spring']:.2f} | {row['ratios']['bpm/rotational']:.1f} | {eff} |")
     if memory:
         print("\n| dim | particles | model | peak memory (bytes/particle, 1 rank) |")
         print("|---|---|---|---|")
