@@ -39,6 +39,9 @@ static constexpr double DT_SAFETY_FRACTION = 0.5;
 // means the integration has become unstable
 static constexpr double STEP_LIMIT_FRACTION = 0.1;
 static constexpr double BIG = 1.0e300;
+// branches of the force loop taken by few records (breaking, contacts, fast
+// rotation): laid out off the straight path of an intact bond
+#define RARE(cond) __builtin_expect(static_cast<bool>(cond), 0)
 // the largest maxslot: the force loop keeps per-record scratch of this size
 static constexpr int MAX_RECORDS = 64;
 
@@ -845,7 +848,7 @@ template <int F> void PairLatticeBond::eval()
 
     for (int s = 0; s < nr; s++) {
       const int j = idx[s];
-      if (j < 0) continue;    // broken bond whose partner is far away
+      if (RARE(j < 0)) continue;    // broken bond whose partner is far away
       LatticeBondRecord &b = r[s];
       const BondParams &p = UNIFORM ? p_uniform : prow[type[j]];
       const bool has_shear = SHEAR && (SHEAR_ALL || p.ks > 0.0);
@@ -864,7 +867,7 @@ template <int F> void PairLatticeBond::eval()
       const double dtan = PLANAR ? ddy * nx - ddx * ny : 0.0;
 
       int state = b.state;
-      if (state == LB_INTACT && xn > p.xb) {
+      if (RARE(state == LB_INTACT && xn > p.xb)) {
         // tensile break: both springs let go
         b.state = LB_BROKEN_TENSION;
         state = LB_BROKEN_TENSION;
@@ -874,7 +877,7 @@ template <int F> void PairLatticeBond::eval()
           b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
         }
       }
-      if (state != LB_INTACT && xn >= 0.0) {
+      if (RARE(state != LB_INTACT && xn >= 0.0)) {
         // open contact: no force, no memory
         if (TALLY)
           q_friction += PLANAR ? planar_release(b, p.ks, dtan) : spring_release(b, p.ks, ddx, ddy, ddz);
@@ -907,13 +910,13 @@ template <int F> void PairLatticeBond::eval()
         const double fs2 = p.ks * p.ks * sig * sig;
         if (state == LB_INTACT) {
           const double limit = p.fs0 - p.mu_p * fn;    // intact-bond Coulomb limit
-          if (fs2 > limit * limit || limit < 0.0) {
+          if (RARE(fs2 > limit * limit || limit < 0.0)) {
             b.state = LB_BROKEN_SHEAR;
             state = LB_BROKEN_SHEAR;
             broke_now = 1;
           }
         }
-        if (state != LB_INTACT) {
+        if (RARE(state != LB_INTACT)) {
           if (xn >= 0.0) {
             // broken in shear while in tension: the contact is open
             if (TALLY) {
@@ -958,7 +961,7 @@ template <int F> void PairLatticeBond::eval()
         // the two parts (for the heat): the turned old spring and the increment
         double s1x = s0x - sn * nx, s1y = s0y - sn * ny, s1z = s0z - sn * nz;
         const double tx = ddx - dn * nx, ty = ddy - dn * ny, tz = ddz - dn * nz;
-        if (sn * sn > 1.0e-12 * s2) {
+        if (RARE(sn * sn > 1.0e-12 * s2)) {
           // the pair turned noticeably in one step (by more than about 1e-6
           // rad): the turned spring keeps its length
           const double old2 = s0x * s0x + s0y * s0y + s0z * s0z;
@@ -978,13 +981,13 @@ template <int F> void PairLatticeBond::eval()
         const double fs2 = p.ks * p.ks * s2;
         if (state == LB_INTACT) {
           const double limit = p.fs0 - p.mu_p * fn;    // intact-bond Coulomb limit
-          if (fs2 > limit * limit || limit < 0.0) {
+          if (RARE(fs2 > limit * limit || limit < 0.0)) {
             b.state = LB_BROKEN_SHEAR;
             state = LB_BROKEN_SHEAR;
             broke_now = 1;
           }
         }
-        if (state != LB_INTACT) {
+        if (RARE(state != LB_INTACT)) {
           if (xn >= 0.0) {
             // broken in shear while in tension: the contact is open
             if (TALLY) {
