@@ -44,6 +44,14 @@ static constexpr double BIG = 1.0e300;
 #define RARE(cond) __builtin_expect(static_cast<bool>(cond), 0)
 // the largest maxslot: the force loop keeps per-record scratch of this size
 static constexpr int MAX_RECORDS = 64;
+// shear_frame corotational: a particle's fit of its rotation is used only when
+// tr(S) tr(S^-1) <= this bound, S the sum of m m^T over its intact bonds (4 for
+// an isotropic 2D and 9 for an isotropic 3D neighbourhood, 5.3 and 13.5 for the
+// corner particles of hexagonal and fcc blocks; two bonds 11.5 degrees from
+// collinear reach it in 2D); otherwise its rotation is taken as zero
+static constexpr double ROTATION_FIT_CONDITION = 100.0;
+static constexpr int FIT_VALUES_2D = 7;     // S: xx xy yy; B: xx xy yx yy
+static constexpr int FIT_VALUES_3D = 15;    // S: xx xy xz yy yz zz; B: 9 values
 
 /* ---------------------------------------------------------------------- */
 
@@ -52,16 +60,19 @@ PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
     tolerance(DEFAULT_TOLERANCE), maxslot(DEFAULT_MAXSLOT), cut_user(0.0), cut_global(0.0),
     fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), partner_stride(0), own_map(0), min_radius(0.0), equal_radius(0.0),
     dt_critical(0.0), shear_pairs(SHEAR_PAIRS_SOME),
-    any_friction(1), uniform_params(0), tally_flag(0)
+    any_friction(1), uniform_params(0), tally_flag(0), spin(nullptr), spin_nmax(0),
+    fit_values(0), comm_what(COMM_DISPLACEMENT)
 {
+  shear_frame = SHEAR_FRAME_FIXED;
   heat[0] = heat[1] = heat[2] = 0.0;
   single_enable = 0;
   restartinfo = 1;
   writedata = 1;
   finitecutflag = 1;
   centroidstressflag = CENTROID_SAME;
-  comm_forward = 3;    // the particles' displacements since the last step, to the ghosts
-  comm_reverse = 1;    // bond stiffness summed per particle (critical time step)
+  comm_forward = 3;    // the particles' displacements (or rotations) this step, to the ghosts
+  comm_reverse = 1;    // bond stiffness summed per particle (critical time step); more for
+                       // the sums of the rotation fit with shear_frame corotational
   store_id = "LATTICE_BOND_STORE";
 }
 
@@ -80,6 +91,7 @@ PairLatticeBond::~PairLatticeBond()
     memory->destroy(coeff_set);
   }
   memory->destroy(partner_idx);
+  memory->destroy(spin);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -106,6 +118,7 @@ void PairLatticeBond::allocate()
 
 /* ----------------------------------------------------------------------
    pair_style lattice/bond [tolerance t] [maxslot n] [cutoff rc]
+                           [shear_frame fixed|corotational]
 ------------------------------------------------------------------------- */
 
 void PairLatticeBond::settings(int narg, char **arg)
@@ -129,9 +142,16 @@ void PairLatticeBond::settings(int narg, char **arg)
       cut_user = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (cut_user <= 0.0)
         error->all(FLERR, "pair_style lattice/bond cutoff {} must be > 0", cut_user);
+    } else if (key == "shear_frame") {
+      const std::string value = arg[iarg + 1];
+      if (value == "fixed") shear_frame = SHEAR_FRAME_FIXED;
+      else if (value == "corotational") shear_frame = SHEAR_FRAME_COROTATIONAL;
+      else
+        error->all(FLERR, "pair_style lattice/bond shear_frame {} is not valid: use fixed or "
+                   "corotational", value);
     } else {
-      error->all(FLERR, "Unknown pair_style lattice/bond keyword {}: valid are tolerance, maxslot, cutoff",
-                 key);
+      error->all(FLERR, "Unknown pair_style lattice/bond keyword {}: valid are tolerance, maxslot, "
+                 "cutoff, shear_frame", key);
     }
     iarg += 2;
   }
@@ -239,6 +259,10 @@ void PairLatticeBond::init_style()
   } else {
     cut_global = cut_auto > 0.0 ? cut_auto : 1.0;
   }
+
+  // ghosts' sums of the rotation fit travel back to their owners
+  comm_reverse = (shear_frame == SHEAR_FRAME_COROTATIONAL)
+      ? (domain->dimension == 2 ? FIT_VALUES_2D : FIT_VALUES_3D) : 1;
 
   acquire_store();
   find_equal_radius();
@@ -639,6 +663,7 @@ void PairLatticeBond::check_time_step()
       stiffness_sum[j] += k;
     }
   }
+  comm_what = COMM_STIFFNESS;
   comm->reverse_comm(this);
   double lambda_local = 0.0, lambda = 0.0;
   for (int i = 0; i < nlocal; i++)
@@ -683,6 +708,11 @@ void PairLatticeBond::report_instability(int i)
 
 int PairLatticeBond::pack_reverse_comm(int n, int first, double *buf)
 {
+  if (comm_what == COMM_FIT) {
+    const int nv = fit_values;
+    std::memcpy(buf, fit_sums.data() + (size_t) first * nv, sizeof(double) * n * nv);
+    return n * nv;
+  }
   for (int k = 0; k < n; k++) buf[k] = stiffness_sum[first + k];
   return n;
 }
@@ -691,6 +721,14 @@ int PairLatticeBond::pack_reverse_comm(int n, int first, double *buf)
 
 void PairLatticeBond::unpack_reverse_comm(int n, int *list, double *buf)
 {
+  if (comm_what == COMM_FIT) {
+    const int nv = fit_values;
+    for (int k = 0; k < n; k++) {
+      double *sums = fit_sums.data() + (size_t) list[k] * nv;
+      for (int v = 0; v < nv; v++) sums[v] += buf[k * nv + v];
+    }
+    return;
+  }
   for (int k = 0; k < n; k++) stiffness_sum[list[k]] += buf[k];
 }
 
@@ -718,8 +756,10 @@ void PairLatticeBond::compute(int eflag, int vflag)
   const bool setup = update->setupflag;
   const int runaway = fix_store->update_displacements(setup ? 0.0 : STEP_LIMIT_FRACTION * min_radius);
   if (runaway >= 0) report_instability(runaway);
+  comm_what = COMM_DISPLACEMENT;
   comm->forward_comm(this);
   if (setup) check_time_step();
+  if (corotational()) local_rotations();
 
   // each scene runs a force loop compiled for the physics it uses
   const int features = scene_features();
@@ -740,8 +780,10 @@ int PairLatticeBond::scene_features() const
 {
   // 2D records hold signed scalar springs: every 2D loop is planar
   const int planar = (domain->dimension == 2) ? LB_PLANAR : 0;
-  if (evflag) return LB_EV | LB_SHEAR_SOME | LB_FRICTION | planar | (tally_flag ? LB_TALLY : 0);
-  int features = planar | (tally_flag ? LB_TALLY : 0);
+  const int corotate = corotational() ? LB_COROTATE : 0;
+  if (evflag)
+    return LB_EV | LB_SHEAR_SOME | LB_FRICTION | planar | (tally_flag ? LB_TALLY : 0) | corotate;
+  int features = planar | (tally_flag ? LB_TALLY : 0) | corotate;
   if (uniform_params) features |= LB_UNIFORM;
   if (shear_pairs == SHEAR_PAIRS_ALL) features |= LB_SHEAR_ALL;
   else if (shear_pairs == SHEAR_PAIRS_SOME) features |= LB_SHEAR_SOME;
@@ -756,9 +798,13 @@ int PairLatticeBond::scene_features() const
 
 template <int F> constexpr PairLatticeBond::EvalFn PairLatticeBond::eval_entry()
 {
-  constexpr int GENERAL = LB_SHEAR_SOME | LB_FRICTION | (F & (LB_EV | LB_TALLY | LB_PLANAR));
+  constexpr int GENERAL =
+      LB_SHEAR_SOME | LB_FRICTION | (F & (LB_EV | LB_TALLY | LB_PLANAR | LB_COROTATE));
   constexpr bool both_shear = (F & LB_SHEAR_ALL) && (F & LB_SHEAR_SOME);
+  // without shear springs there is nothing to corotate (corotational() is false)
+  constexpr bool idle_corotate = (F & LB_COROTATE) && !(F & (LB_SHEAR_ALL | LB_SHEAR_SOME | LB_EV));
   if constexpr ((F & LB_EV) || both_shear) return &PairLatticeBond::eval<GENERAL>;
+  else if constexpr (idle_corotate) return &PairLatticeBond::eval<F & ~LB_COROTATE>;
   else return &PairLatticeBond::eval<F>;
 }
 
@@ -772,6 +818,186 @@ PairLatticeBond::make_eval_table(std::index_sequence<I...>)
 const std::array<PairLatticeBond::EvalFn, PairLatticeBond::LB_NFEATURES>
     PairLatticeBond::EVAL_TABLE =
         PairLatticeBond::make_eval_table(std::make_index_sequence<LB_NFEATURES>{});
+
+/* ----------------------------------------------------------------------
+   shear_frame corotational (docs/pair_lattice_bond.rst, "Rigid rotation"):
+   the pre-pass runs only when some type pair has a shear spring
+------------------------------------------------------------------------- */
+
+bool PairLatticeBond::corotational() const
+{
+  return shear_frame == SHEAR_FRAME_COROTATIONAL && shear_pairs != SHEAR_PAIRS_NONE;
+}
+
+/* ----------------------------------------------------------------------
+   each particle's rotation increment in this step, fitted to the motion of
+   its intact bonds.  For a bond of particle i with partner j let u = the
+   step's relative displacement (disp_i - disp_j) and m = r_ij - u/2 its
+   mid-step separation.  The velocity gradient L of the neighbourhood is the
+   least-squares fit of u = L m over the particle's intact bonds,
+       L = B S^-1,   B = sum u m^T,   S = sum m m^T,
+   and the rotation is its antisymmetric part, w = axial vector of (L - L^T)/2.
+   A rigid rotation by the angle phi about the axis a moves every separation by
+   u = 2 g x m exactly (Cayley: r_new - r_old = g x (r_new + r_old),
+   g = tan(phi/2) a), so the fit returns w = 2 g to round-off, and a pure strain
+   (symmetric L) returns w = 0 for any neighbourhood geometry.  A particle
+   whose bonds do not span the plane (2D) or space (3D), or span it poorly
+   (tr S tr S^-1 above ROTATION_FIT_CONDITION: one bond, collinear bonds, in 3D
+   coplanar ones), gets w = 0, as in the papers.  Both atoms of a bond receive
+   its terms (the products do not change sign with the bond's direction);
+   ghosts' sums go back to their owners, and the owners' rotations out to the
+   ghosts.  Nothing is kept between steps.
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::local_rotations()
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const bool planar = (domain->dimension == 2);
+  const int nv = planar ? FIT_VALUES_2D : FIT_VALUES_3D;
+  fit_values = nv;
+  fit_sums.assign((size_t) nall * nv, 0.0);
+  if (atom->nmax > spin_nmax) {
+    memory->destroy(spin);
+    spin_nmax = atom->nmax;
+    memory->create(spin, spin_nmax, 3, "pair:spin");
+  }
+
+  const auto *const x = reinterpret_cast<const double(*)[3]>(atom->x[0]);
+  const auto *const disp = reinterpret_cast<const double(*)[3]>(fix_store->disp[0]);
+  double *const sums = fit_sums.data();
+  for (int i = 0; i < nlocal; i++) {
+    const LatticeBondRecord *r = fix_store->records(i);
+    const int *idx = partner_idx + (bigint) i * partner_stride;
+    for (int s = 0; s < fix_store->nrec[i]; s++) {
+      const int j = idx[s];
+      if (j < 0 || r[s].state != LB_INTACT) continue;
+      // the same expressions as in eval(), so that a rigid rotation cancels to round-off
+      const double ux = disp[i][0] - disp[j][0], uy = disp[i][1] - disp[j][1];
+      const double mx = (x[i][0] - x[j][0]) - 0.5 * ux, my = (x[i][1] - x[j][1]) - 0.5 * uy;
+      double *si = sums + (size_t) i * nv, *sj = sums + (size_t) j * nv;
+      if (planar) {
+        const double t[FIT_VALUES_2D] = {mx * mx, mx * my, my * my,
+                                         ux * mx, ux * my, uy * mx, uy * my};
+        for (int v = 0; v < FIT_VALUES_2D; v++) {
+          si[v] += t[v];
+          sj[v] += t[v];
+        }
+      } else {
+        const double uz = disp[i][2] - disp[j][2];
+        const double mz = (x[i][2] - x[j][2]) - 0.5 * uz;
+        const double t[FIT_VALUES_3D] = {mx * mx, mx * my, mx * mz, my * my, my * mz, mz * mz,
+                                         ux * mx, ux * my, ux * mz, uy * mx, uy * my, uy * mz,
+                                         uz * mx, uz * my, uz * mz};
+        for (int v = 0; v < FIT_VALUES_3D; v++) {
+          si[v] += t[v];
+          sj[v] += t[v];
+        }
+      }
+    }
+  }
+  comm_what = COMM_FIT;
+  comm->reverse_comm(this);
+
+  for (int i = 0; i < nlocal; i++) {
+    const double *f = sums + (size_t) i * nv;
+    double *wi = spin[i];
+    wi[0] = wi[1] = wi[2] = 0.0;
+    if (planar) {
+      const double tr = f[0] + f[2];
+      if (!(tr > 0.0)) continue;
+      const double q = 1.0 / tr;    // scale S and B by 1/tr S: no under- or overflow
+      const double a = f[0] * q, b = f[1] * q, c = f[2] * q;
+      const double det = a * c - b * b;    // tr S tr S^-1 = tr^2 / det = 1 / det here
+      if (!(det * ROTATION_FIT_CONDITION >= 1.0)) continue;
+      const double bxx = f[3] * q, bxy = f[4] * q, byx = f[5] * q, byy = f[6] * q;
+      // (L_yx - L_xy) / 2 with L = B S^-1, S^-1 = [c -b; -b a] / det
+      wi[2] = 0.5 * ((c * byx - b * byy) - (a * bxy - b * bxx)) / det;
+    } else {
+      const double tr = f[0] + f[3] + f[5];
+      if (!(tr > 0.0)) continue;
+      const double q = 1.0 / tr;
+      const double sxx = f[0] * q, sxy = f[1] * q, sxz = f[2] * q;
+      const double syy = f[3] * q, syz = f[4] * q, szz = f[5] * q;
+      // adjugate of S (symmetric) and its determinant
+      const double axx = syy * szz - syz * syz, axy = sxz * syz - sxy * szz;
+      const double axz = sxy * syz - sxz * syy, ayy = sxx * szz - sxz * sxz;
+      const double ayz = sxy * sxz - sxx * syz, azz = sxx * syy - sxy * sxy;
+      const double det = sxx * axx + sxy * axy + sxz * axz;
+      // tr S tr S^-1 = (axx + ayy + azz) / det, tr S = 1 here
+      if (!(det * ROTATION_FIT_CONDITION >= axx + ayy + azz)) continue;
+      const double bm[3][3] = {{f[6] * q, f[7] * q, f[8] * q},
+                               {f[9] * q, f[10] * q, f[11] * q},
+                               {f[12] * q, f[13] * q, f[14] * q}};
+      const double adj[3][3] = {{axx, axy, axz}, {axy, ayy, ayz}, {axz, ayz, azz}};
+      // L det = B adj; w = axial vector of the antisymmetric part of L
+      auto l = [&](int a, int b) {
+        return bm[a][0] * adj[0][b] + bm[a][1] * adj[1][b] + bm[a][2] * adj[2][b];
+      };
+      const double h = 0.5 / det;
+      wi[0] = (l(2, 1) - l(1, 2)) * h;
+      wi[1] = (l(0, 2) - l(2, 0)) * h;
+      wi[2] = (l(1, 0) - l(0, 1)) * h;
+    }
+  }
+  comm_what = COMM_SPIN;
+  comm->forward_comm(this);
+}
+
+/* ----------------------------------------------------------------------
+   the step's relative displacement u of a pair without its share of the
+   local rigid rotation: u -= wbar x m, wbar = (w_i + w_j)/2, m = r_ij - u/2
+   (exact for a rigid rotation, see local_rotations).  This is the relative
+   displacement of the contact point if each particle turned with its
+   neighbourhood.  g = wbar/2 is that rotation as a Gibbs vector
+------------------------------------------------------------------------- */
+
+template <bool PLANAR>
+void PairLatticeBond::remove_rigid_rotation(const double *wi, const double *wj, double dx,
+                                            double dy, double dz, double &ux, double &uy,
+                                            double &uz, double *g)
+{
+  const double wz = 0.5 * (wi[2] + wj[2]);
+  const double mx = dx - 0.5 * ux, my = dy - 0.5 * uy;
+  if constexpr (PLANAR) {
+    ux += wz * my;
+    uy -= wz * mx;
+    g[0] = g[1] = 0.0;
+  } else {
+    const double wx = 0.5 * (wi[0] + wj[0]), wy = 0.5 * (wi[1] + wj[1]);
+    const double mz = dz - 0.5 * uz;
+    ux -= wy * mz - wz * my;
+    uy -= wz * mx - wx * mz;
+    uz -= wx * my - wy * mx;
+    g[0] = 0.5 * wx;
+    g[1] = 0.5 * wy;
+  }
+  g[2] = 0.5 * wz;
+}
+
+/* ----------------------------------------------------------------------
+   turn the shear spring s by the rotation with Gibbs vector g (Rodrigues):
+   s += 2 / (1 + g.g) (g x s + g x (g x s))
+------------------------------------------------------------------------- */
+
+template <bool PLANAR>
+void PairLatticeBond::rotate_spring(const double *g, double &sx, double &sy, double &sz)
+{
+  if constexpr (PLANAR) {
+    const double c = 2.0 / (1.0 + g[2] * g[2]);
+    const double ax = -(g[2] * sy), ay = g[2] * sx;
+    const double bx = -(g[2] * ay), by = g[2] * ax;
+    sx += c * (ax + bx);
+    sy += c * (ay + by);
+  } else {
+    const double c = 2.0 / (1.0 + (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
+    const double ax = g[1] * sz - g[2] * sy, ay = g[2] * sx - g[0] * sz, az = g[0] * sy - g[1] * sx;
+    const double bx = g[1] * az - g[2] * ay, by = g[2] * ax - g[0] * az, bz = g[0] * ay - g[1] * ax;
+    sx += c * (ax + bx);
+    sy += c * (ay + by);
+    sz += c * (az + bz);
+  }
+}
 
 /* ----------------------------------------------------------------------
    the force loop over records (REFERENCE.md, "Model"), compiled per feature
@@ -805,6 +1031,7 @@ template <int F> void PairLatticeBond::eval()
   constexpr bool SHEAR_ALL = F & LB_SHEAR_ALL;
   constexpr bool FRICTION = F & LB_FRICTION;
   constexpr bool EQUAL = F & LB_EQUAL;
+  constexpr bool COROTATE = F & LB_COROTATE;
 
   // LAMMPS keeps x and f contiguous: index them as arrays of triples
   const auto *const x = reinterpret_cast<const double(*)[3]>(atom->x[0]);
@@ -817,6 +1044,7 @@ template <int F> void PairLatticeBond::eval()
   const int stride = partner_stride;
   const BondParams p_uniform = params[1][1];
   const double touch_equal = 2.0 * equal_radius;    // r + r is exact: the same bits
+  const auto *const w = COROTATE ? reinterpret_cast<const double(*)[3]>(spin[0]) : nullptr;
   double q_break_n = 0.0, q_break_s = 0.0, q_friction = 0.0;
 
   for (int i = 0; i < nlocal; i++) {
@@ -862,9 +1090,13 @@ template <int F> void PairLatticeBond::eval()
       // this step's relative displacement (dx minus its value at the last step)
       const double ddx = dxi - disp[j][0], ddy = dyi - disp[j][1];
       const double ddz = PLANAR ? 0.0 : dzi - disp[j][2];
+      // the increment the shear springs see: with shear_frame corotational
+      // without the pair's share of the local rigid rotation (g: that rotation)
+      double ux = ddx, uy = ddy, uz = ddz, g[3];
+      if (COROTATE) remove_rigid_rotation<PLANAR>(w[i], w[j], dx, dy, dz, ux, uy, uz, g);
 
       // 2D: the tangential part of it along t = z x n = (-ny, nx)
-      const double dtan = PLANAR ? ddy * nx - ddx * ny : 0.0;
+      const double dtan = PLANAR ? uy * nx - ux * ny : 0.0;
 
       int state = b.state;
       if (RARE(state == LB_INTACT && xn > p.xb)) {
@@ -949,18 +1181,20 @@ template <int F> void PairLatticeBond::eval()
         fsy = -p.ks * sig * nx;
         if (EVFLAG) es = 0.5 * p.ks * sig * sig;
       } else if (!PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
-        const double s0x = b.shear[0], s0y = b.shear[1], s0z = b.shear[2];
+        double s0x = b.shear[0], s0y = b.shear[1], s0z = b.shear[2];
+        // shear_frame corotational: the spring turned with the pair's rotation
+        if (COROTATE) rotate_spring<false>(g, s0x, s0y, s0z);
         // the spring turned into the new tangent plane (its normal part
         // dropped) plus the tangential part of this step's relative
         // displacement, in one projection of their sum
         const double sn = s0x * nx + s0y * ny + s0z * nz;
-        const double dn = ddx * nx + ddy * ny + ddz * nz;
+        const double dn = ux * nx + uy * ny + uz * nz;
         const double un = sn + dn;
-        double sx = (s0x + ddx) - un * nx, sy = (s0y + ddy) - un * ny, sz = (s0z + ddz) - un * nz;
+        double sx = (s0x + ux) - un * nx, sy = (s0y + uy) - un * ny, sz = (s0z + uz) - un * nz;
         double s2 = sx * sx + sy * sy + sz * sz;
         // the two parts (for the heat): the turned old spring and the increment
         double s1x = s0x - sn * nx, s1y = s0y - sn * ny, s1z = s0z - sn * nz;
-        const double tx = ddx - dn * nx, ty = ddy - dn * ny, tz = ddz - dn * nz;
+        const double tx = ux - dn * nx, ty = uy - dn * ny, tz = uz - dn * nz;
         if (RARE(sn * sn > 1.0e-12 * s2)) {
           // the pair turned noticeably in one step (by more than about 1e-6
           // rad): the turned spring keeps its length
@@ -1120,7 +1354,7 @@ double PairLatticeBond::planar_release(const LatticeBondRecord &b, double ks, do
 
 /* ----------------------------------------------------------------------
    forward communication: the step's displacements of the ghosts' owners
-   (a displacement needs no periodic shift)
+   (a displacement needs no periodic shift), or their rotations
 ------------------------------------------------------------------------- */
 
 int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
@@ -1129,6 +1363,12 @@ int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int /*pbc_
   double **disp = fix_store->disp;
   const int dim = domain->dimension;    // 2D: the force loop reads x and y only
   int m = 0;
+  if (comm_what == COMM_SPIN) {    // the rotations (2D: about z only)
+    const int c0 = (dim == 2) ? 2 : 0;
+    for (int k = 0; k < n; k++)
+      for (int c = c0; c < 3; c++) buf[m++] = spin[list[k]][c];
+    return m;
+  }
   for (int k = 0; k < n; k++)
     for (int c = 0; c < dim; c++) buf[m++] = disp[list[k]][c];
   return m;
@@ -1141,6 +1381,12 @@ void PairLatticeBond::unpack_forward_comm(int n, int first, double *buf)
   double **disp = fix_store->disp;
   const int dim = domain->dimension;
   int m = 0;
+  if (comm_what == COMM_SPIN) {
+    const int c0 = (dim == 2) ? 2 : 0;
+    for (int i = first; i < first + n; i++)
+      for (int c = c0; c < 3; c++) spin[i][c] = buf[m++];
+    return;
+  }
   for (int i = first; i < first + n; i++)
     for (int c = 0; c < dim; c++) disp[i][c] = buf[m++];
 }
@@ -1176,25 +1422,53 @@ double PairLatticeBond::local_elastic_energy() const
 
 /* ---------------------------------------------------------------------- */
 
+/* ----------------------------------------------------------------------
+   settings: tolerance, then a negative settings format (files before the
+   shear_frame keyword have maxslot >= 1 there), maxslot, cutoff, shear_frame
+------------------------------------------------------------------------- */
+
+static constexpr int SETTINGS_FORMAT = 2;
+
 void PairLatticeBond::write_restart_settings(FILE *fp)
 {
+  const int format = -SETTINGS_FORMAT;
   fwrite(&tolerance, sizeof(double), 1, fp);
+  fwrite(&format, sizeof(int), 1, fp);
   fwrite(&maxslot, sizeof(int), 1, fp);
   fwrite(&cut_user, sizeof(double), 1, fp);
+  fwrite(&shear_frame, sizeof(int), 1, fp);
 }
 
 /* ---------------------------------------------------------------------- */
 
 void PairLatticeBond::read_restart_settings(FILE *fp)
 {
+  int word = 0;
   if (comm->me == 0) {
     utils::sfread(FLERR, &tolerance, sizeof(double), 1, fp, nullptr, error);
-    utils::sfread(FLERR, &maxslot, sizeof(int), 1, fp, nullptr, error);
-    utils::sfread(FLERR, &cut_user, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &word, sizeof(int), 1, fp, nullptr, error);
+    if (word > 0) {    // format 1: maxslot, cutoff; the papers' shear frame
+      maxslot = word;
+      shear_frame = SHEAR_FRAME_FIXED;
+    } else if (word == -SETTINGS_FORMAT) {
+      utils::sfread(FLERR, &maxslot, sizeof(int), 1, fp, nullptr, error);
+    }
+    if (word > 0 || word == -SETTINGS_FORMAT)
+      utils::sfread(FLERR, &cut_user, sizeof(double), 1, fp, nullptr, error);
+    if (word == -SETTINGS_FORMAT) utils::sfread(FLERR, &shear_frame, sizeof(int), 1, fp, nullptr, error);
   }
+  MPI_Bcast(&word, 1, MPI_INT, 0, world);
+  if (word <= 0 && word != -SETTINGS_FORMAT)
+    error->all(FLERR, "This restart file holds pair_style lattice/bond settings in format {} "
+               "(a newer BONDED_LATTICE version); this version reads formats 1 and {}", -word,
+               SETTINGS_FORMAT);
   MPI_Bcast(&tolerance, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&maxslot, 1, MPI_INT, 0, world);
   MPI_Bcast(&cut_user, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&shear_frame, 1, MPI_INT, 0, world);
+  if (shear_frame != SHEAR_FRAME_FIXED && shear_frame != SHEAR_FRAME_COROTATIONAL)
+    error->all(FLERR, "This restart file holds an unknown pair_style lattice/bond shear_frame ({})",
+               shear_frame);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -1284,5 +1558,7 @@ double PairLatticeBond::memory_usage()
   double bytes = Pair::memory_usage();
   bytes += (double) partner_nmax * partner_stride * sizeof(int);
   bytes += (double) cand_i.capacity() * 2 * sizeof(int);
+  bytes += (double) spin_nmax * 3 * sizeof(double);
+  bytes += (double) fit_sums.capacity() * sizeof(double);
   return bytes;
 }

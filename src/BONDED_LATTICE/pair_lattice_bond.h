@@ -80,6 +80,10 @@ class PairLatticeBond : public Pair {
   int maxslot;         // records per atom
   double cut_user;     // cutoff keyword, 0 = automatic
   double cut_global;
+  // shear_frame keyword: increments of the shear springs measured in the fixed
+  // frame (the papers) or relative to each particle's local rigid rotation
+  enum { SHEAR_FRAME_FIXED = 0, SHEAR_FRAME_COROTATIONAL = 1 };
+  int shear_frame;
 
   std::string store_id;
   FixLatticeBondStore *fix_store;
@@ -101,6 +105,15 @@ class PairLatticeBond : public Pair {
   int uniform_params;                 // 1 if all type pairs have the same parameters
   int tally_flag;                     // 1: accumulate heat (compute lattice/energy)
   double heat[3];                     // see heat_tallies()
+  // shear_frame corotational: each particle's rotation increment this step
+  // (local and ghost atoms), fitted by local_rotations()
+  double **spin;
+  int spin_nmax;
+  std::vector<double> fit_sums;       // per particle: the sums of the fit (see local_rotations)
+  int fit_values;                     // values per particle in fit_sums
+  // what forward/reverse communication carries
+  enum { COMM_DISPLACEMENT, COMM_SPIN, COMM_STIFFNESS, COMM_FIT };
+  int comm_what;
 
   void allocate();
   void warn_data_file_has_no_bonds();
@@ -113,6 +126,8 @@ class PairLatticeBond : public Pair {
   void relayout_partners();
   void planar_springs_from_vectors();
   void check_time_step();
+  bool corotational() const;          // the shear_frame corotational pre-pass runs this step
+  void local_rotations();
   [[noreturn]] void report_instability(int i);
   // compile-time features of the force loop (bits of its template argument)
   enum EvalFeature {
@@ -124,7 +139,8 @@ class PairLatticeBond : public Pair {
     LB_SHEAR_SOME = 32,   // some type pairs have one (tested per record)
     LB_FRICTION = 64,     // some type pair has contact friction
     LB_EQUAL = 128,       // all particles have the same radius
-    LB_NFEATURES = 256
+    LB_COROTATE = 256,    // shear_frame corotational: remove the local rigid rotation
+    LB_NFEATURES = 512
   };
   using EvalFn = void (PairLatticeBond::*)();
   int scene_features() const;
@@ -140,6 +156,10 @@ class PairLatticeBond : public Pair {
                                double tz);
   static double planar_heat(double ks, double s1, double t, double s2);
   static double planar_release(const struct LatticeBondRecord &, double ks, double t);
+  template <bool PLANAR>
+  static void remove_rigid_rotation(const double *wi, const double *wj, double dx, double dy,
+                                    double dz, double &ux, double &uy, double &uz, double *g);
+  template <bool PLANAR> static void rotate_spring(const double *g, double &sx, double &sy, double &sz);
 };
 
 }    // namespace LAMMPS_NS
