@@ -50,6 +50,7 @@ static constexpr int MAX_RECORDS = 64;
 // corner particles of hexagonal and fcc blocks; two bonds 11.5 degrees from
 // collinear reach it in 2D); otherwise its rotation is taken as zero
 static constexpr double ROTATION_FIT_CONDITION = 100.0;
+static constexpr double ROTATION_FIT_DET_FLOOR = 1.0e-6;    // det S / (tr S)^3, 3D
 static constexpr int FIT_VALUES_2D = 7;     // S: xx xy yy; B: xx xy yx yy
 static constexpr int FIT_VALUES_3D = 15;    // S: xx xy xz yy yz zz; B: 9 values
 
@@ -924,8 +925,12 @@ void PairLatticeBond::local_rotations()
       const double axz = sxy * syz - sxz * syy, ayy = sxx * szz - sxz * sxz;
       const double ayz = sxy * sxz - sxx * syz, azz = sxx * syy - sxy * sxy;
       const double det = sxx * axx + sxy * axy + sxz * axz;
-      // tr S tr S^-1 = (axx + ayy + azz) / det, tr S = 1 here
-      if (!(det * ROTATION_FIT_CONDITION >= axx + ayy + azz)) continue;
+      // tr S tr S^-1 = (axx + ayy + azz) / det, tr S = 1 here.  Below the bound
+      // every eigenvalue of S is at least 1/100, so det >= 1e-4: the floor only
+      // rejects round-off, where S has rank 1 (one bond, collinear bonds) and
+      // both det and the adjugate are noise of order 1e-17
+      if (!(det >= ROTATION_FIT_DET_FLOOR && det * ROTATION_FIT_CONDITION >= axx + ayy + azz))
+        continue;
       const double bm[3][3] = {{f[6] * q, f[7] * q, f[8] * q},
                                {f[9] * q, f[10] * q, f[11] * q},
                                {f[12] * q, f[13] * q, f[14] * q}};
