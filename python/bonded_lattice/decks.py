@@ -41,6 +41,7 @@ from .conversion import BondParameters
 
 TESTS = ("tension", "compression", "elastic", "confined")
 SCHEDULES = ("constant", "stepwise")
+SHEAR_FRAMES = ("fixed", "corotational")    # pair_style lattice/bond shear_frame
 
 
 @dataclass(frozen=True)
@@ -67,12 +68,16 @@ class DeckSpec:
     gauges: bool = True       # mid-height lateral gauges (False: blocks of 1-2 layers)
     halt_fraction: float = 0.3  # strength tests stop when |stress| < this x peak (0: never)
     energy: bool = False      # energy budget (compute lattice/energy) in the thermo output
+    shear_frame: str = "fixed"  # one of SHEAR_FRAMES (the papers': fixed)
 
     def __post_init__(self) -> None:
         if self.test not in TESTS:
             raise ValueError(f"test = {self.test!r} is not known: use one of {', '.join(TESTS)}")
         if self.dim not in (2, 3):
             raise ValueError(f"dim = {self.dim} is out of range: use 2 or 3")
+        if self.shear_frame not in SHEAR_FRAMES:
+            raise ValueError(f"shear_frame = {self.shear_frame!r} is not known: use one of "
+                             f"{', '.join(SHEAR_FRAMES)}")
         if self.schedule not in SCHEDULES:
             raise ValueError(f"schedule = {self.schedule!r} is not known: use one of "
                              f"{', '.join(SCHEDULES)}")
@@ -149,7 +154,7 @@ atom_style      sphere
 newton          on
 read_data       {spec.data_file}
 
-pair_style      lattice/bond
+pair_style      lattice/bond{"" if spec.shear_frame == "fixed" else " shear_frame " + spec.shear_frame}
 {b.pair_coeff()}
 # a small skin keeps the search for new contacts cheap
 neighbor        {0.1 * spec.d:.6g} bin

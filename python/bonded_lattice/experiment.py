@@ -209,9 +209,9 @@ def has_mid_height(lattice: Lattice) -> bool:
 
 def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
               confining: float = 0.0, dump_every: int = 0, gauges: bool = True,
-              energy: bool = False) -> DeckSpec:
+              energy: bool = False, shear_frame: str = "fixed") -> DeckSpec:
     """The deck of a planned run (reads ``data.lattice`` beside it)."""
-    return DeckSpec(gauges=gauges, energy=energy, test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
+    return DeckSpec(gauges=gauges, energy=energy, shear_frame=shear_frame, test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
                     area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps,
                     dt=plan.dt, thermo_every=plan.thermo_every, confining=confining,
                     schedule=plan.schedule, step_size=plan.step_size,
@@ -227,8 +227,11 @@ def lattice_n_across(lattice: Lattice) -> int:
 def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int = 2,
              d: float = 1.0e-3, progress: bool = True, bond: BondParameters | None = None,
              dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
-             **plan_options) -> dict:
+             shear_frame: str = "fixed", **plan_options) -> dict:
     """Run one test end to end and return the summary (also written to summary.json).
+
+    shear_frame: ``fixed`` (the papers') or ``corotational`` (shear measured relative to
+        each particle's local rigid rotation; pair_style lattice/bond keyword shear_frame).
 
     bond: bond parameters to use instead of the rock's converted ones (calibration);
         the targets stay the rock's properties.
@@ -247,7 +250,7 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
         dump_every = plan.thermo_every * max(1, round(dump_every / plan.thermo_every))
     deck = out / f"in.{test}"
     write_deck(deck_spec(plan, test, dim, bond, confining, dump_every, has_mid_height(lattice),
-                         energy), deck)
+                         energy, shear_frame), deck)
     result: RunResult = run_deck(deck, out, np_=np_, total_steps=plan.steps, progress=progress)
     if result.returncode != 0:
         raise RuntimeError(f"LAMMPS failed in {out}: {result.error}")
