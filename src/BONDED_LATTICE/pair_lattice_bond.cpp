@@ -850,6 +850,56 @@ bool PairLatticeBond::corotational() const
    ghosts.  Nothing is kept between steps.
 ------------------------------------------------------------------------- */
 
+/* ----------------------------------------------------------------------
+   the sums S and B of local_rotations over the intact bonds, on both atoms
+   (the owner's in registers, the partner's in fit_sums)
+------------------------------------------------------------------------- */
+
+template <bool PLANAR> void PairLatticeBond::fit_sums_over_bonds()
+{
+  constexpr int NV = PLANAR ? FIT_VALUES_2D : FIT_VALUES_3D;
+  const auto *const x = reinterpret_cast<const double(*)[3]>(atom->x[0]);
+  const auto *const disp = reinterpret_cast<const double(*)[3]>(fix_store->disp[0]);
+  const int *const nrec = fix_store->nrec;
+  double *const sums = fit_sums.data();
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++) {
+    const LatticeBondRecord *__restrict r = fix_store->records(i);
+    const int *__restrict idx = partner_idx + (bigint) i * partner_stride;
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
+    const double dxi = disp[i][0], dyi = disp[i][1], dzi = disp[i][2];
+    double acc[NV] = {};
+    for (int s = 0; s < nrec[i]; s++) {
+      const int j = idx[s];
+      if (j < 0 || r[s].state != LB_INTACT) continue;
+      // the same expressions as in eval(), so that a rigid rotation cancels to round-off
+      const double ux = dxi - disp[j][0], uy = dyi - disp[j][1];
+      const double mx = (xi - x[j][0]) - 0.5 * ux, my = (yi - x[j][1]) - 0.5 * uy;
+      double t[NV];
+      if constexpr (PLANAR) {
+        const double terms[NV] = {mx * mx, mx * my, my * my, ux * mx, ux * my, uy * mx, uy * my};
+        for (int v = 0; v < NV; v++) t[v] = terms[v];
+      } else {
+        const double uz = dzi - disp[j][2];
+        const double mz = (zi - x[j][2]) - 0.5 * uz;
+        const double terms[NV] = {mx * mx, mx * my, mx * mz, my * my, my * mz, mz * mz,
+                                  ux * mx, ux * my, ux * mz, uy * mx, uy * my, uy * mz,
+                                  uz * mx, uz * my, uz * mz};
+        for (int v = 0; v < NV; v++) t[v] = terms[v];
+      }
+      double *__restrict sj = sums + (size_t) j * NV;
+      for (int v = 0; v < NV; v++) {
+        acc[v] += t[v];
+        sj[v] += t[v];
+      }
+    }
+    double *si = sums + (size_t) i * NV;
+    for (int v = 0; v < NV; v++) si[v] += acc[v];
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
 void PairLatticeBond::local_rotations()
 {
   const int nlocal = atom->nlocal;
@@ -864,42 +914,12 @@ void PairLatticeBond::local_rotations()
     memory->create(spin, spin_nmax, 3, "pair:spin");
   }
 
-  const auto *const x = reinterpret_cast<const double(*)[3]>(atom->x[0]);
-  const auto *const disp = reinterpret_cast<const double(*)[3]>(fix_store->disp[0]);
-  double *const sums = fit_sums.data();
-  for (int i = 0; i < nlocal; i++) {
-    const LatticeBondRecord *r = fix_store->records(i);
-    const int *idx = partner_idx + (bigint) i * partner_stride;
-    for (int s = 0; s < fix_store->nrec[i]; s++) {
-      const int j = idx[s];
-      if (j < 0 || r[s].state != LB_INTACT) continue;
-      // the same expressions as in eval(), so that a rigid rotation cancels to round-off
-      const double ux = disp[i][0] - disp[j][0], uy = disp[i][1] - disp[j][1];
-      const double mx = (x[i][0] - x[j][0]) - 0.5 * ux, my = (x[i][1] - x[j][1]) - 0.5 * uy;
-      double *si = sums + (size_t) i * nv, *sj = sums + (size_t) j * nv;
-      if (planar) {
-        const double t[FIT_VALUES_2D] = {mx * mx, mx * my, my * my,
-                                         ux * mx, ux * my, uy * mx, uy * my};
-        for (int v = 0; v < FIT_VALUES_2D; v++) {
-          si[v] += t[v];
-          sj[v] += t[v];
-        }
-      } else {
-        const double uz = disp[i][2] - disp[j][2];
-        const double mz = (x[i][2] - x[j][2]) - 0.5 * uz;
-        const double t[FIT_VALUES_3D] = {mx * mx, mx * my, mx * mz, my * my, my * mz, mz * mz,
-                                         ux * mx, ux * my, ux * mz, uy * mx, uy * my, uy * mz,
-                                         uz * mx, uz * my, uz * mz};
-        for (int v = 0; v < FIT_VALUES_3D; v++) {
-          si[v] += t[v];
-          sj[v] += t[v];
-        }
-      }
-    }
-  }
+  if (planar) fit_sums_over_bonds<true>();
+  else fit_sums_over_bonds<false>();
   comm_what = COMM_FIT;
   comm->reverse_comm(this);
 
+  const double *const sums = fit_sums.data();
   for (int i = 0; i < nlocal; i++) {
     const double *f = sums + (size_t) i * nv;
     double *wi = spin[i];
@@ -950,24 +970,25 @@ void PairLatticeBond::local_rotations()
 }
 
 /* ----------------------------------------------------------------------
-   the step's relative displacement u of a pair without its share of the
-   local rigid rotation: u -= wbar x m, wbar = (w_i + w_j)/2, m = r_ij - u/2
-   (exact for a rigid rotation, see local_rotations).  This is the relative
-   displacement of the contact point if each particle turned with its
-   neighbourhood.  g = wbar/2 is that rotation as a Gibbs vector
+   shear_frame corotational, per record (inlined into the force loop): the
+   step's relative displacement u of the pair without its share of the local
+   rigid rotation, u -= wbar x m, wbar = (w_i + w_j)/2, m = r_ij - u/2 (exact
+   for a rigid rotation, see local_rotations; it is the relative displacement
+   of the contact point if each particle turned with its neighbourhood), and
+   that rotation's Gibbs vector g = wbar/2
 ------------------------------------------------------------------------- */
 
 template <bool PLANAR>
-void PairLatticeBond::remove_rigid_rotation(const double *wi, const double *wj, double dx,
-                                            double dy, double dz, double &ux, double &uy,
-                                            double &uz, double *g)
+static inline __attribute__((always_inline)) void
+remove_rigid_rotation(const double *wi, const double *wj, double dx, double dy, double dz,
+                      double &ux, double &uy, double &uz, double *g)
 {
   const double wz = 0.5 * (wi[2] + wj[2]);
   const double mx = dx - 0.5 * ux, my = dy - 0.5 * uy;
+  g[2] = 0.5 * wz;
   if constexpr (PLANAR) {
     ux += wz * my;
     uy -= wz * mx;
-    g[0] = g[1] = 0.0;
   } else {
     const double wx = 0.5 * (wi[0] + wj[0]), wy = 0.5 * (wi[1] + wj[1]);
     const double mz = dz - 0.5 * uz;
@@ -977,31 +998,24 @@ void PairLatticeBond::remove_rigid_rotation(const double *wi, const double *wj, 
     g[0] = 0.5 * wx;
     g[1] = 0.5 * wy;
   }
-  g[2] = 0.5 * wz;
 }
 
 /* ----------------------------------------------------------------------
-   turn the shear spring s by the rotation with Gibbs vector g (Rodrigues):
-   s += 2 / (1 + g.g) (g x s + g x (g x s))
+   3D: the shear spring s turned by the rotation with Gibbs vector g
+   (Rodrigues): s += 2/(1 + g.g) (g x s + g x (g x s)).  A 2D spring is a
+   signed length along the pair's tangent and turns with the pair by itself
 ------------------------------------------------------------------------- */
 
-template <bool PLANAR>
-void PairLatticeBond::rotate_spring(const double *g, double &sx, double &sy, double &sz)
+static inline __attribute__((always_inline)) void rotate_spring(const double *g, double &sx,
+                                                                double &sy, double &sz)
 {
-  if constexpr (PLANAR) {
-    const double c = 2.0 / (1.0 + g[2] * g[2]);
-    const double ax = -(g[2] * sy), ay = g[2] * sx;
-    const double bx = -(g[2] * ay), by = g[2] * ax;
-    sx += c * (ax + bx);
-    sy += c * (ay + by);
-  } else {
-    const double c = 2.0 / (1.0 + (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
-    const double ax = g[1] * sz - g[2] * sy, ay = g[2] * sx - g[0] * sz, az = g[0] * sy - g[1] * sx;
-    const double bx = g[1] * az - g[2] * ay, by = g[2] * ax - g[0] * az, bz = g[0] * ay - g[1] * ax;
-    sx += c * (ax + bx);
-    sy += c * (ay + by);
-    sz += c * (az + bz);
-  }
+  const double gx = g[0], gy = g[1], gz = g[2];
+  const double c = 2.0 / (1.0 + (gx * gx + gy * gy + gz * gz));
+  const double ax = gy * sz - gz * sy, ay = gz * sx - gx * sz, az = gx * sy - gy * sx;
+  const double bx = gy * az - gz * ay, by = gz * ax - gx * az, bz = gx * ay - gy * ax;
+  sx += c * (ax + bx);
+  sy += c * (ay + by);
+  sz += c * (az + bz);
 }
 
 /* ----------------------------------------------------------------------
@@ -1188,7 +1202,7 @@ template <int F> void PairLatticeBond::eval()
       } else if (!PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
         double s0x = b.shear[0], s0y = b.shear[1], s0z = b.shear[2];
         // shear_frame corotational: the spring turned with the pair's rotation
-        if (COROTATE) rotate_spring<false>(g, s0x, s0y, s0z);
+        if (COROTATE) rotate_spring(g, s0x, s0y, s0z);
         // the spring turned into the new tangent plane (its normal part
         // dropped) plus the tangential part of this step's relative
         // displacement, in one projection of their sum

@@ -128,6 +128,7 @@ class PairLatticeBond : public Pair {
   void check_time_step();
   bool corotational() const;          // the shear_frame corotational pre-pass runs this step
   void local_rotations();
+  template <bool PLANAR> void fit_sums_over_bonds();
   [[noreturn]] void report_instability(int i);
   // compile-time features of the force loop (bits of its template argument)
   enum EvalFeature {
@@ -156,10 +157,6 @@ class PairLatticeBond : public Pair {
                                double tz);
   static double planar_heat(double ks, double s1, double t, double s2);
   static double planar_release(const struct LatticeBondRecord &, double ks, double t);
-  template <bool PLANAR>
-  static void remove_rigid_rotation(const double *wi, const double *wj, double dx, double dy,
-                                    double dz, double &ux, double &uy, double &uz, double *g);
-  template <bool PLANAR> static void rotate_spring(const double *g, double &sx, double &sy, double &sz);
 };
 
 }    // namespace LAMMPS_NS
