@@ -149,8 +149,11 @@ MODELS["lattice/bond:two-types"] = {
     + "group           half id <= $(floor(count(all)/2))\nset             group half type 2\n"
     + "set             type 2 diameter " + str(D) + "\nset             type 2 mass {mass}\n"
     + "pair_coeff      2 2 {kn} {ks} $({xb}*1.0000001) {fs0} {mup}\n"}
+# shear measured relative to each particle's local rigid rotation (a pre-pass fits it)
+MODELS["lattice/bond:corotational"] = {**MODELS["lattice/bond"], "after": _LB_AFTER.replace(
+    "pair_style      lattice/bond", "pair_style      lattice/bond shear_frame corotational")}
 FEATURE_MODELS = ["lattice/bond", "lattice/bond:frictionless", "lattice/bond:no-shear",
-                  "lattice/bond:two-types", "lattice/bond+energy"]
+                  "lattice/bond:two-types", "lattice/bond+energy", "lattice/bond:corotational"]
 
 
 def build_input(name: str, cells: int, dim: int = 3) -> str:

@@ -51,13 +51,22 @@ BALANCE = "fix             lb all balance 500 1.05 shift x 10 1.05\n"
 
 
 @pytest.mark.mpi
-@pytest.mark.parametrize("np_,balance", [(2, False), (3, False), (4, False), (4, True)])
-def test_drift_around_periodic_box(tmp_path, np_, balance):
-    """Also with more ranks than cores (4 on the 2-core machine) and with fix balance
-    moving the subdomain boundaries while the block drifts through them."""
+@pytest.mark.parametrize("np_,balance,frame", [(2, False, "fixed"), (3, False, "fixed"),
+                                               (4, False, "fixed"), (4, True, "fixed"),
+                                               (2, False, "corotational"),
+                                               (3, False, "corotational")])
+def test_drift_around_periodic_box(tmp_path, np_, balance, frame):
+    """Also with more ranks than cores (4 on the 2-core machine), with fix balance
+    moving the subdomain boundaries while the block drifts through them, and with the
+    corotational shear frame (its rotation fit sums ghosts' terms across subdomain and
+    periodic boundaries)."""
     # 4 ranks on 2 cores are slow (busy-waiting MPI): the same trip in fewer, longer steps
     steps = "1000" if np_ > 2 else "5000"
     plain = DECK.replace("STEPS", steps)
+    if frame != "fixed":
+        plain = plain.replace("pair_style      lattice/bond\n",
+                              f"pair_style      lattice/bond shear_frame {frame}\n")
+        assert frame in plain
     deck = plain.replace("fix             nve all nve\n",
                          "fix             nve all nve\n" + (BALANCE if balance else ""))
     one = run_deck(plain, tmp_path / "one")
