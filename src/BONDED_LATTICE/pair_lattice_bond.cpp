@@ -974,18 +974,16 @@ void PairLatticeBond::local_rotations()
    step's relative displacement u of the pair without its share of the local
    rigid rotation, u -= wbar x m, wbar = (w_i + w_j)/2, m = r_ij - u/2 (exact
    for a rigid rotation, see local_rotations; it is the relative displacement
-   of the contact point if each particle turned with its neighbourhood), and
-   that rotation's Gibbs vector g = wbar/2
+   of the contact point if each particle turned with its neighbourhood)
 ------------------------------------------------------------------------- */
 
 template <bool PLANAR>
 static inline __attribute__((always_inline)) void
 remove_rigid_rotation(const double *wi, const double *wj, double dx, double dy, double dz,
-                      double &ux, double &uy, double &uz, double *g)
+                      double &ux, double &uy, double &uz)
 {
   const double wz = 0.5 * (wi[2] + wj[2]);
   const double mx = dx - 0.5 * ux, my = dy - 0.5 * uy;
-  g[2] = 0.5 * wz;
   if constexpr (PLANAR) {
     ux += wz * my;
     uy -= wz * mx;
@@ -995,21 +993,21 @@ remove_rigid_rotation(const double *wi, const double *wj, double dx, double dy, 
     ux -= wy * mz - wz * my;
     uy -= wz * mx - wx * mz;
     uz -= wx * my - wy * mx;
-    g[0] = 0.5 * wx;
-    g[1] = 0.5 * wy;
   }
 }
 
 /* ----------------------------------------------------------------------
-   3D: the shear spring s turned by the rotation with Gibbs vector g
-   (Rodrigues): s += 2/(1 + g.g) (g x s + g x (g x s)).  A 2D spring is a
-   signed length along the pair's tangent and turns with the pair by itself
+   3D: the shear spring s turned by the pair's rotation, whose Gibbs vector
+   is g = wbar/2 = (w_i + w_j)/4 (Rodrigues): s += 2/(1 + g.g) (g x s +
+   g x (g x s)).  A 2D spring is a signed length along the pair's tangent and
+   turns with the pair by itself
 ------------------------------------------------------------------------- */
 
-static inline __attribute__((always_inline)) void rotate_spring(const double *g, double &sx,
-                                                                double &sy, double &sz)
+static inline __attribute__((always_inline)) void rotate_spring(const double *wi, const double *wj,
+                                                                double &sx, double &sy, double &sz)
 {
-  const double gx = g[0], gy = g[1], gz = g[2];
+  const double gx = 0.5 * (0.5 * (wi[0] + wj[0])), gy = 0.5 * (0.5 * (wi[1] + wj[1]));
+  const double gz = 0.5 * (0.5 * (wi[2] + wj[2]));
   const double c = 2.0 / (1.0 + (gx * gx + gy * gy + gz * gz));
   const double ax = gy * sz - gz * sy, ay = gz * sx - gx * sz, az = gx * sy - gy * sx;
   const double bx = gy * az - gz * ay, by = gz * ax - gx * az, bz = gx * ay - gy * ax;
@@ -1110,9 +1108,9 @@ template <int F> void PairLatticeBond::eval()
       const double ddx = dxi - disp[j][0], ddy = dyi - disp[j][1];
       const double ddz = PLANAR ? 0.0 : dzi - disp[j][2];
       // the increment the shear springs see: with shear_frame corotational
-      // without the pair's share of the local rigid rotation (g: that rotation)
-      double ux = ddx, uy = ddy, uz = ddz, g[3];
-      if (COROTATE) remove_rigid_rotation<PLANAR>(w[i], w[j], dx, dy, dz, ux, uy, uz, g);
+      // without the pair's share of the local rigid rotation
+      double ux = ddx, uy = ddy, uz = ddz;
+      if (COROTATE) remove_rigid_rotation<PLANAR>(w[i], w[j], dx, dy, dz, ux, uy, uz);
 
       // 2D: the tangential part of it along t = z x n = (-ny, nx)
       const double dtan = PLANAR ? uy * nx - ux * ny : 0.0;
@@ -1202,7 +1200,7 @@ template <int F> void PairLatticeBond::eval()
       } else if (!PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
         double s0x = b.shear[0], s0y = b.shear[1], s0z = b.shear[2];
         // shear_frame corotational: the spring turned with the pair's rotation
-        if (COROTATE) rotate_spring(g, s0x, s0y, s0z);
+        if (COROTATE) rotate_spring(w[i], w[j], s0x, s0y, s0z);
         // the spring turned into the new tangent plane (its normal part
         // dropped) plus the tangential part of this step's relative
         // displacement, in one projection of their sum
