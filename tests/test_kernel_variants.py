@@ -53,16 +53,22 @@ velocity        all set v_vx v_vy {vz} units box
 """
 
 
-def final_state(lmp, dim: int, coeffs: list[str], thermo_every: int, steps: int,
-                v: float, rate: float, energy: bool, extra: str = "",
-                style_args: str = "") -> tuple[np.ndarray, np.ndarray]:
-    lmp.commands_string(f"""
+def scene_opening(dim: int) -> str:
+    """The block of a scene, with the group 'half' (the lower half of the IDs)."""
+    return f"""
 units           si
 atom_style      sphere
 newton          on
 {LATTICE[dim]}
 set             type 1 diameter {D}
 group           half id <= $(floor(count(all)/2))
+"""
+
+
+def final_state(lmp, dim: int, coeffs: list[str], thermo_every: int, steps: int,
+                v: float, rate: float, energy: bool, extra: str = "",
+                style_args: str = "") -> tuple[np.ndarray, np.ndarray]:
+    lmp.commands_string(scene_opening(dim) + f"""
 set             group half type 2
 {extra}
 pair_style      lattice/bond {style_args}

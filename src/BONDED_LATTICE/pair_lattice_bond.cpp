@@ -1017,6 +1017,17 @@ static inline __attribute__((always_inline)) void rotate_spring(const double *wi
 }
 
 /* ----------------------------------------------------------------------
+   an intact bond breaks in shear when its shear force (squared: fs2) exceeds
+   the Coulomb limit Fs0 - mu_p Fn, or when that limit is negative
+------------------------------------------------------------------------- */
+
+static inline bool breaks_in_shear(double fs0, double mu_p, double fn, double fs2)
+{
+  const double limit = fs0 - mu_p * fn;
+  return fs2 > limit * limit || limit < 0.0;
+}
+
+/* ----------------------------------------------------------------------
    the force loop over records (REFERENCE.md, "Model"), compiled per feature
    set F (see scene_features):
    LB_EV: tally energy/virial; LB_TALLY: accumulate breaking and frictional
@@ -1157,13 +1168,10 @@ template <int F> void PairLatticeBond::eval()
         double sig = s1 + dtan;
         int broke_now = 0;
         const double fs2 = p.ks * p.ks * sig * sig;
-        if (state == LB_INTACT) {
-          const double limit = p.fs0 - p.mu_p * fn;    // intact-bond Coulomb limit
-          if (RARE(fs2 > limit * limit || limit < 0.0)) {
-            b.state = LB_BROKEN_SHEAR;
-            state = LB_BROKEN_SHEAR;
-            broke_now = 1;
-          }
+        if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2))) {
+          b.state = LB_BROKEN_SHEAR;
+          state = LB_BROKEN_SHEAR;
+          broke_now = 1;
         }
         if (RARE(state != LB_INTACT)) {
           if (xn >= 0.0) {
@@ -1230,13 +1238,10 @@ template <int F> void PairLatticeBond::eval()
         }
         int broke_now = 0;
         const double fs2 = p.ks * p.ks * s2;
-        if (state == LB_INTACT) {
-          const double limit = p.fs0 - p.mu_p * fn;    // intact-bond Coulomb limit
-          if (RARE(fs2 > limit * limit || limit < 0.0)) {
-            b.state = LB_BROKEN_SHEAR;
-            state = LB_BROKEN_SHEAR;
-            broke_now = 1;
-          }
+        if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2))) {
+          b.state = LB_BROKEN_SHEAR;
+          state = LB_BROKEN_SHEAR;
+          broke_now = 1;
         }
         if (RARE(state != LB_INTACT)) {
           if (xn >= 0.0) {
