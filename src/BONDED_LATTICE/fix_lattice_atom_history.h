@@ -10,6 +10,7 @@
 #define LMP_FIX_LATTICE_ATOM_HISTORY_H
 
 #include "domain.h"
+#include "lammps_api_compat.h"
 #include "fix.h"
 
 #include <cmath>
@@ -23,7 +24,7 @@ namespace LAMMPS_NS {
 inline void lattice_unwrap_step(Domain *domain, double *d)
 {
   if (domain->triclinic) {
-    domain->minimum_image(FLERR, d);
+    lattice_minimum_image(domain, d);
     return;
   }
   if (domain->xperiodic && std::fabs(d[0]) > 0.5 * domain->xprd)

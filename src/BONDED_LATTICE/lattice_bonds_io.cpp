@@ -17,6 +17,7 @@
 #include "error.h"
 #include "fix_lattice_bond_store.h"
 #include "force.h"
+#include "lammps_api_compat.h"
 #include "pair_lattice_bond.h"
 #include "update.h"
 #include "utils.h"
@@ -169,16 +170,16 @@ void WriteLatticeBonds::command(int narg, char **arg)
   FILE *fp = fopen(arg[0], "w");
   if (!fp) error->one(FLERR, "write_lattice_bonds: cannot open file {}: {}", arg[0],
                       utils::getsyserror());
-  utils::print(fp, "# BONDED_LATTICE bond network, format {}\n", FILE_FORMAT);
-  utils::print(fp, "# written at step {} by LAMMPS {}\n", update->ntimestep, lmp->version);
-  utils::print(fp, "# records {}: intact {}, tension {}, shear {}, contact {}\n", n, per_state[0],
-               per_state[1], per_state[2], per_state[3]);
-  utils::print(fp, "# owner partner state shear_x shear_y shear_z  (owner: the lower atom ID; "
-               "force on the owner -Ks * shear)\n");
+  lattice_print(fp, "# BONDED_LATTICE bond network, format {}\n", FILE_FORMAT);
+  lattice_print(fp, "# written at step {} by LAMMPS {}\n", update->ntimestep, lmp->version);
+  lattice_print(fp, "# records {}: intact {}, tension {}, shear {}, contact {}\n", n, per_state[0],
+                per_state[1], per_state[2], per_state[3]);
+  lattice_print(fp, "# owner partner state shear_x shear_y shear_z  (owner: the lower atom ID; "
+                "force on the owner -Ks * shear)\n");
   for (size_t k : order) {
     const double *v = &all[VALUES * k];
-    utils::print(fp, "{} {} {} {:.17g} {:.17g} {:.17g}\n", (tagint) v[0], (tagint) v[1],
-                 STATE_NAMES[(int) v[2]], v[3], v[4], v[5]);
+    lattice_print(fp, "{} {} {} {:.17g} {:.17g} {:.17g}\n", (tagint) v[0], (tagint) v[1],
+                  STATE_NAMES[(int) v[2]], v[3], v[4], v[5]);
   }
   fclose(fp);
   utils::logmesg(lmp, "write_lattice_bonds: {} records to {}\n", n, arg[0]);

@@ -20,6 +20,7 @@
 #include "error.h"
 #include "fix_lattice_bond_store.h"
 #include "force.h"
+#include "lammps_api_compat.h"
 #include "memory.h"
 #include "modify.h"
 #include "neigh_list.h"
@@ -1553,8 +1554,8 @@ void PairLatticeBond::write_data(FILE *fp)
                    "'write_data file pair ij' to keep the I J ones");
   for (int i = 1; i <= atom->ntypes; i++) {
     const BondParams &p = params[i][i];
-    utils::print(fp, "{} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}{}\n", i, p.kn, p.ks, p.xb, p.fs0,
-                 p.mu_p, bondable[i][i] ? "" : " bond no");
+    lattice_print(fp, "{} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}{}\n", i, p.kn, p.ks, p.xb, p.fs0,
+                  p.mu_p, bondable[i][i] ? "" : " bond no");
   }
 }
 
@@ -1568,8 +1569,8 @@ void PairLatticeBond::write_data_all(FILE *fp)
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
       const BondParams &p = params[i][j];
-      utils::print(fp, "{} {} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}{}\n", i, j, p.kn, p.ks, p.xb,
-                   p.fs0, p.mu_p, bondable[i][j] ? "" : " bond no");
+      lattice_print(fp, "{} {} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}{}\n", i, j, p.kn, p.ks, p.xb,
+                    p.fs0, p.mu_p, bondable[i][j] ? "" : " bond no");
     }
 }
 
