@@ -7,6 +7,7 @@ crack crosses the block between steps ~4425 and ~4470.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -172,6 +173,12 @@ run             1
 """
     result = run_deck(deck, tmp_path)
     assert result.returncode != 0
+    # the file was written by LAMMPS 22 Jul 2025; another LAMMPS release may stop at
+    # the restart header already, before the plugin sees its records
+    versions = re.search(r"restart file = (.+), LAMMPS = (.+)", result.output)
+    if versions and versions[1] != versions[2] and "format 1" not in result.output:
+        pytest.skip(f"LAMMPS {versions[2]} cannot read the header of this restart file of "
+                    f"LAMMPS {versions[1]}: {result.error}")
     assert "format 1" in result.output and "older BONDED_LATTICE version" in result.output, \
         result.output[-1500:]
     assert "Rerun the model from its data file" in result.output
@@ -312,10 +319,23 @@ def test_foreign_file_is_rejected_as_restart(tmp_path):
     assert "Invalid LAMMPS restart file" in result.output, result.output[-1500:]
 
 
+def _session_processes(sid: int) -> list[int]:
+    """Live (not zombie) processes of the session sid, from /proc."""
+    pids = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[3]) == sid and fields[0] not in "ZX":    # state ppid pgrp session
+            pids.append(int(stat.parent.name))
+    return pids
+
+
 @pytest.mark.mpi
 def test_run_killed_with_sigkill_resumes_from_its_last_restart_file(tmp_path):
-    """A 2-rank run writing a restart file every 500 steps is killed (SIGKILL, the whole
-    process group) while the crack grows; runs resumed from its files reach the state of the
+    """A 2-rank run writing a restart file every 500 steps is killed (SIGKILL, every process
+    of the job) while the crack grows; runs resumed from its files reach the state of the
     uninterrupted run: the same positions before the fracture, the same broken bonds after."""
     import os
     import signal
@@ -336,18 +356,33 @@ def test_run_killed_with_sigkill_resumes_from_its_last_restart_file(tmp_path):
                                                "restart         500 ckpt.*\nrun             ${steps}"))
     cmd = lmp_command(2) + ["-in", "in.kill", "-log", "log.kill", "-screen", "none",
                            *args, "-var", "steps", "20000"]
-    proc = subprocess.Popen(cmd, cwd=work, start_new_session=True, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL)
+    with open(work / "mpirun.out", "w") as out:
+        proc = subprocess.Popen(cmd, cwd=work, start_new_session=True, stdout=out,
+                                stderr=subprocess.STDOUT)
     try:
         deadline = time.time() + 300
         while not (work / "ckpt.5000").exists() and proc.poll() is None and time.time() < deadline:
             time.sleep(0.02)
     finally:
-        if proc.poll() is None:
-            os.killpg(proc.pid, signal.SIGKILL)
+        # the whole job: mpirun and every rank.  MPICH's ranks share mpirun's process
+        # group, Open MPI puts each rank in a group of its own; all are in the session
+        # that start_new_session opened
+        for _ in range(3):
+            for pid in _session_processes(proc.pid):
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
         proc.wait()
     assert proc.returncode != 0, "the run must be killed, not finish"
-    assert (work / "ckpt.4500").exists()
+    deadline = time.time() + 10
+    while _session_processes(proc.pid) and time.time() < deadline:
+        time.sleep(0.05)
+    assert not _session_processes(proc.pid), "a rank survived SIGKILL"
+    written = sorted(work.glob("ckpt.*"))
+    time.sleep(0.5)
+    assert sorted(work.glob("ckpt.*")) == written, "restart files still written after the kill"
+    assert (work / "ckpt.4500").exists(), (work / "mpirun.out").read_text()[-2000:]
 
     eta = (8 * 2650 * np.sqrt(3) * D**2 / 2 * 6.5874e10) ** 0.5 / 15
     for start, stop in ((3000, 4000), (4500, 5400)):

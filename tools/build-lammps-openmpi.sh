@@ -8,7 +8,8 @@
 #       source/lammps-<version>/    (the unpacked source: src/ headers, python/ module)
 #       BUILT                       (stamp: written last, holds the configuration)
 #
-# A later run finds the stamp and only prints the prefix (last line of output).
+# A later run finds the stamp and only prints the prefix (last line of output);
+# the Open MPI packages are checked (and installed if missing) every time.
 #
 # The source comes from the Debian release after bookworm (trixie), through
 # apt's own source client with a temporary sources list, lists directory and
@@ -29,18 +30,9 @@ JOBS=${BONDED_LATTICE_JOBS:-2}
 CACHE=${BONDED_LATTICE_CACHE:-$HOME/.cache/bonded-lattice}
 PREFIX=$CACHE/lammps-$UPSTREAM-openmpi
 PACKAGES="PLUGIN BPM GRANULAR MOLECULE"
-# the configuration the stamp records; a different one rebuilds
-CONFIG="lammps=$UPSTREAM suite=$SUITE mpi=openmpi packages=$PACKAGES shared=on"
 
 say() { echo "build-lammps-openmpi: $*" >&2; }
 die() { say "ERROR: $*"; exit 1; }
-
-if [[ -f $PREFIX/BUILT ]] && grep -qxF "config: $CONFIG" "$PREFIX/BUILT" \
-   && [[ -x $PREFIX/bin/lmp ]]; then
-  say "reusing $PREFIX (built $(sed -n 's/^date: //p' "$PREFIX/BUILT"))"
-  echo "$PREFIX"
-  exit 0
-fi
 
 # --- tools ------------------------------------------------------------------
 need=()
@@ -57,6 +49,17 @@ if (( ${#need[@]} )); then
 fi
 MPICXX=$(command -v mpicxx.openmpi) || die "mpicxx.openmpi not found after installing libopenmpi-dev"
 MPICC=$(command -v mpicc.openmpi) || die "mpicc.openmpi not found after installing libopenmpi-dev"
+# the configuration the stamp records; a different one (e.g. another Open MPI) rebuilds
+CONFIG="lammps=$UPSTREAM suite=$SUITE mpi=$("$MPICXX" --showme:version 2>&1 | sed -n 's/.*Open MPI \([0-9.]*\).*/openmpi-\1/p') \
+packages=$PACKAGES shared=on"
+
+if [[ -f $PREFIX/BUILT ]] && grep -qxF "config: $CONFIG" "$PREFIX/BUILT" \
+   && [[ -x $PREFIX/bin/lmp ]]; then
+  say "reusing $PREFIX (built $(sed -n 's/^date: //p' "$PREFIX/BUILT"))"
+  echo "$PREFIX"
+  exit 0
+fi
+
 [[ -r $KEYRING ]] || die "$KEYRING (package debian-archive-keyring) is needed to check the $SUITE sources"
 
 # --- source -----------------------------------------------------------------
@@ -125,6 +128,11 @@ cmake --build "$work/build" -j "$JOBS" >&2
 cmake --install "$work/build" >&2
 build_s=$((SECONDS - t0))
 say "build and install: $build_s s with $JOBS jobs"
+# keep of the source what later steps use: src/version.h and python/ (LAMMPS' Python
+# module), cmake/, debian/ and the licence; examples, docs, potentials go (400 MB)
+find "$srcdir" -mindepth 1 -maxdepth 1 \
+  ! -name src ! -name python ! -name cmake ! -name debian ! -name LICENSE ! -name README \
+  -exec rm -rf {} +
 
 "$PREFIX/bin/lmp" -h > "$work/lmp-help.txt" || die "$PREFIX/bin/lmp -h failed: $(tail -3 "$work/lmp-help.txt")"
 for p in $PACKAGES; do
@@ -133,7 +141,6 @@ done
 {
   echo "config: $CONFIG"
   echo "debian: lammps $version from $MIRROR $SUITE"
-  echo "mpi: $("$MPICXX" --showme:version 2>&1 | head -1)"
   echo "build seconds: $build_s"
   echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
 } > "$PREFIX/BUILT"
