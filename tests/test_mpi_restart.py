@@ -342,7 +342,7 @@ def test_run_killed_with_sigkill_resumes_from_its_last_restart_file(tmp_path):
     import subprocess
     import time
 
-    from bonded_lattice.runner import lmp_command
+    from bonded_lattice.runner import lmp_command, run_environment
 
     args = DECK_ARGS + ["-var", "dumpevery", "200"]
     # the uninterrupted run
@@ -358,7 +358,7 @@ def test_run_killed_with_sigkill_resumes_from_its_last_restart_file(tmp_path):
                            *args, "-var", "steps", "20000"]
     with open(work / "mpirun.out", "w") as out:
         proc = subprocess.Popen(cmd, cwd=work, start_new_session=True, stdout=out,
-                                stderr=subprocess.STDOUT)
+                                stderr=subprocess.STDOUT, env=run_environment(2))
     try:
         deadline = time.time() + 300
         while not (work / "ckpt.5000").exists() and proc.poll() is None and time.time() < deadline:
@@ -382,7 +382,8 @@ def test_run_killed_with_sigkill_resumes_from_its_last_restart_file(tmp_path):
     written = sorted(work.glob("ckpt.*"))
     time.sleep(0.5)
     assert sorted(work.glob("ckpt.*")) == written, "restart files still written after the kill"
-    assert (work / "ckpt.4500").exists(), (work / "mpirun.out").read_text()[-2000:]
+    assert (work / "ckpt.4500").exists(), \
+        f"{cmd} ended with {proc.returncode}: " + (work / "mpirun.out").read_text()[-2000:]
 
     eta = (8 * 2650 * np.sqrt(3) * D**2 / 2 * 6.5874e10) ** 0.5 / 15
     for start, stop in ((3000, 4000), (4500, 5400)):

@@ -7,6 +7,7 @@ the test and its last printed case names the culprit."""
 from __future__ import annotations
 
 import json
+import os
 import random
 import subprocess
 import sys
@@ -93,8 +94,9 @@ CHILD = textwrap.dedent("""
 
 def test_parsers_never_crash_and_explain_errors(tmp_path):
     all_cases = cases()
+    # env: without the variables an MPI initialised in this process may have added
     proc = subprocess.run([sys.executable, "-c", CHILD], input=json.dumps([SETUP, PAIR, all_cases]),
-                          capture_output=True, text=True, timeout=600)
+                          capture_output=True, text=True, timeout=600, env=dict(os.environ))
     lines = [json.loads(l) for l in proc.stdout.splitlines() if l.startswith("{")]
     finished = [l for l in lines if "ok" in l]
     last = lines[-1]["case"] if lines else None

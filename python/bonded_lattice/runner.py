@@ -156,6 +156,23 @@ class _Progress:
             sys.stderr.write("\n")
 
 
+def run_environment(np_: int = 1) -> dict[str, str]:
+    """Environment for an ``lmp_command(np_)`` process.
+
+    A copy of ``os.environ`` as it was when Python started: after an in-process
+    LAMMPS has initialised MPI (``from lammps import lammps``), the process
+    environment also holds that MPI's own variables (Open MPI's singleton sets
+    several), which make a child ``mpirun`` fail.
+    """
+    env = dict(os.environ)
+    env.setdefault("OMP_NUM_THREADS", "1")
+    if np_ > (os.cpu_count() or 1):
+        # more ranks than cores: MPICH should yield the core instead of spinning
+        env.setdefault("MPIR_CVAR_ENABLE_HEAVY_YIELD", "1")
+        env.setdefault("MPIR_CVAR_POLLS_BEFORE_YIELD", "1")
+    return env
+
+
 def run_deck(deck: str | Path, workdir: str | Path | None = None, np_: int = 1,
              total_steps: int | None = None, progress: bool = True,
              extra_args: list[str] | None = None) -> RunResult:
@@ -168,12 +185,7 @@ def run_deck(deck: str | Path, workdir: str | Path | None = None, np_: int = 1,
     workdir = Path(workdir).resolve() if workdir else deck.parent
     workdir.mkdir(parents=True, exist_ok=True)
     cmd = lmp_command(np_) + ["-in", str(deck), "-log", "log.lammps"] + list(extra_args or [])
-    env = dict(os.environ)
-    env.setdefault("OMP_NUM_THREADS", "1")
-    if np_ > (os.cpu_count() or 1):
-        # more ranks than cores: MPICH should yield the core instead of spinning
-        env.setdefault("MPIR_CVAR_ENABLE_HEAVY_YIELD", "1")
-        env.setdefault("MPIR_CVAR_POLLS_BEFORE_YIELD", "1")
+    env = run_environment(np_)
     bar = _Progress(total_steps, progress)
     start = time.perf_counter()
     with subprocess.Popen(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
