@@ -160,6 +160,18 @@ def test_write_data_warns_and_keeps_coefficients(tmp_path):
     assert [float(v) for v in coeffs[2:]] == [6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915]
 
 
+def skip_if_lammps_cannot_read(result) -> None:
+    """Skip a test of a stored restart file that the running LAMMPS refused itself.
+
+    The files in tests/data were written by LAMMPS 22 Jul 2025; another release may
+    stop in its own read_restart at the header, before the plugin sees its records."""
+    versions = re.search(r"restart file = (.+), LAMMPS = (.+)", result.output)
+    if (result.returncode != 0 and versions and versions[1] != versions[2]
+            and "read_restart.cpp" in result.error):
+        pytest.skip(f"LAMMPS {versions[2]} cannot read the header of this restart file of "
+                    f"LAMMPS {versions[1]}: {result.error}")
+
+
 def test_restart_of_the_first_record_format_is_rejected(tmp_path):
     """A restart file whose records carry the old per-bond separation (format 1,
     written by the first versions; tests/data holds one) is refused with a
@@ -173,12 +185,7 @@ run             1
 """
     result = run_deck(deck, tmp_path)
     assert result.returncode != 0
-    # the file was written by LAMMPS 22 Jul 2025; another LAMMPS release may stop at
-    # the restart header already, before the plugin sees its records
-    versions = re.search(r"restart file = (.+), LAMMPS = (.+)", result.output)
-    if versions and versions[1] != versions[2] and "format 1" not in result.output:
-        pytest.skip(f"LAMMPS {versions[2]} cannot read the header of this restart file of "
-                    f"LAMMPS {versions[1]}: {result.error}")
+    skip_if_lammps_cannot_read(result)
     assert "format 1" in result.output and "older BONDED_LATTICE version" in result.output, \
         result.output[-1500:]
     assert "Rerun the model from its data file" in result.output
@@ -205,6 +212,7 @@ run             300
 write_dump      all custom continued.txt id x y modify sort id format float %.17g
 """
     result = run_deck(deck, tmp_path)
+    skip_if_lammps_cannot_read(result)
     assert result.returncode == 0, result.error
     ours = read_dump(tmp_path / "continued.txt")
     theirs = read_dump(data / "lattice_bond_format2_2d_continued.txt")
