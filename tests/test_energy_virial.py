@@ -61,6 +61,9 @@ run 0
     # the shear increment is the tangential part of the relative displacement
     ddx = np.array([-delta, -s, 0.0])
     shear = ddx - np.dot(ddx, n) * n
+    if dimension == 2:
+        # 2D takes it along the mid-step tangent: (t . u)(1 + n . u / 2r), to second order
+        shear *= 1.0 + 0.5 * np.dot(ddx, n) / r
     f1 = -KN * xn * n - KS * shear
     energy = 0.5 * KN * xn**2 + 0.5 * KS * np.dot(shear, shear)
     pe = lmp.get_thermo("pe")

@@ -142,7 +142,10 @@ run             0
 
 
 def test_quarter_turn_fixed_frame_2d_shear_is_the_arc_length(tmp_path):
-    """Unbreakable bonds: every spring holds N d sin(dtheta), 1.5708 d, 2.5e7 E_b."""
+    """Unbreakable bonds: every spring holds N d sin(dtheta) (1 + sin^2(dtheta/2)), 1.5708 d,
+    2.5e7 E_b: each step adds the chord's part along the mid-step tangent as the loop
+    forms it, t . du (1 + n . du / 2r), with t . du = d sin(dtheta) and n . du =
+    2 d sin^2(dtheta/2)."""
     turn = Turn(2, "fixed", UNBREAKABLE_FS0, 2000)
     try:
         turn.run(turn.quarter)
@@ -150,7 +153,7 @@ def test_quarter_turn_fixed_frame_2d_shear_is_the_arc_length(tmp_path):
         pe = turn.lmp.get_thermo("pe")
     finally:
         turn.close()
-    expected = turn.quarter * D * math.sin(turn.dtheta)
+    expected = turn.quarter * D * math.sin(turn.dtheta) * (1.0 + math.sin(turn.dtheta / 2) ** 2)
     mag = np.linalg.norm(shear, axis=1)
     ks = QUARTZ[2][1]
     per_bond = 0.5 * ks * expected**2
@@ -166,12 +169,13 @@ def test_quarter_turn_fixed_frame_2d_shear_is_the_arc_length(tmp_path):
 
 
 def test_quarter_turn_fixed_frame_2d_breaks_every_bond_at_the_predicted_step(tmp_path):
-    """Quartz: every bond breaks in shear in the step k_b where Ks k d sin(dtheta)
-    first exceeds Fs0 (k_b = 20 here: 0.09 degrees), and stays broken."""
+    """Quartz: every bond breaks in shear in the step k_b where Ks k g first exceeds
+    Fs0, g = d sin(dtheta)(1 + sin^2(dtheta/2)) the step's increment (see the arc-length
+    test; k_b = 20 here: 0.09 degrees), and stays broken."""
     kn, ks, xb, fs0, mu = QUARTZ[2]
     turn = Turn(2, "fixed", fs0, 20000)
     try:
-        step_gain = D * math.sin(turn.dtheta)
+        step_gain = D * math.sin(turn.dtheta) * (1.0 + math.sin(turn.dtheta / 2) ** 2)
         k_b = math.floor(fs0 / (ks * step_gain)) + 1
         # far from a tie: the round-off normal force (mu_p Kn X_n ~ 1e-9 N) cannot shift it
         margin = 1e-6 * fs0

@@ -1090,7 +1090,7 @@ template <int F> void PairLatticeBond::eval()
     // the separations of all records first: their square roots and divisions
     // are independent, so the processor overlaps them instead of each record
     // waiting for its own (the loop is latency-bound, docs/performance.md)
-    double dist[MAX_RECORDS], unit[3][MAX_RECORDS];
+    double dist[MAX_RECORDS], dinv[MAX_RECORDS], unit[3][MAX_RECORDS];
     for (int s = 0; s < nr; s++) {
       const int j = idx[s];
       const int jj = (j < 0) ? i : j;    // a far-away partner: any finite values
@@ -1098,6 +1098,7 @@ template <int F> void PairLatticeBond::eval()
       const double rr = (j < 0) ? 1.0 : sqrt(sx * sx + sy * sy + sz * sz);
       const double rinv = 1.0 / rr;
       dist[s] = rr;
+      if (PLANAR) dinv[s] = rinv;
       unit[0][s] = sx * rinv;
       unit[1][s] = sy * rinv;
       if (!PLANAR) unit[2][s] = sz * rinv;
@@ -1125,7 +1126,10 @@ template <int F> void PairLatticeBond::eval()
       if (COROTATE) remove_rigid_rotation<PLANAR>(w[i], w[j], dx, dy, dz, ux, uy, uz);
 
       // 2D: the tangential part of it along t = z x n = (-ny, nx)
-      const double dtan = PLANAR ? uy * nx - ux * ny : 0.0;
+      // taken along the tangent at mid-step, which makes the update time-reversible:
+      // t_mid . u = (t . u) r / |d - u/2| = (t . u)(1 + (n . u) / (2 r)) to second order
+      const double dtan =
+          PLANAR ? (uy * nx - ux * ny) * (1.0 + 0.5 * (ux * nx + uy * ny) * dinv[s]) : 0.0;
 
       int state = b.state;
       if (RARE(state == LB_INTACT && xn > p.xb)) {
