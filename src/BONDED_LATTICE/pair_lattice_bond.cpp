@@ -241,14 +241,7 @@ void PairLatticeBond::init_style()
                                : SHEAR_PAIRS_SOME;
 
   // cutoff: the longest bond that can exist (2 * largest radius, plus tolerance)
-  double maxrad_local = 0.0, maxrad = 0.0, minrad_local = BIG, minrad = BIG;
-  for (int i = 0; i < atom->nlocal; i++) {
-    maxrad_local = MAX(maxrad_local, atom->radius[i]);
-    if (atom->radius[i] > 0.0) minrad_local = MIN(minrad_local, atom->radius[i]);
-  }
-  MPI_Allreduce(&maxrad_local, &maxrad, 1, MPI_DOUBLE, MPI_MAX, world);
-  MPI_Allreduce(&minrad_local, &minrad, 1, MPI_DOUBLE, MPI_MIN, world);
-  min_radius = (minrad < BIG) ? minrad : 0.0;
+  const double maxrad = measure_radii();
   if (atom->natoms > 0 && maxrad <= 0.0)
     error->all(FLERR, "pair_style lattice/bond: all particles have zero diameter; set diameters "
                "(the bond rest length is r_i + r_j)");
@@ -267,7 +260,6 @@ void PairLatticeBond::init_style()
       ? (domain->dimension == 2 ? FIT_VALUES_2D : FIT_VALUES_3D) : 1;
 
   acquire_store();
-  find_equal_radius();
 
   // a half list that holds each local-ghost pair on both ranks: the rank of
   // the lower tag finds every pair it must own (half the memory of a full list)
@@ -275,21 +267,28 @@ void PairLatticeBond::init_style()
 }
 
 /* ----------------------------------------------------------------------
-   equal particles (the lattice model's own case) take a force loop without
-   the per-partner radius: equal_radius is their radius, or 0 if radii
-   differ or a fix adapt may change them during a run
+   the particles' radii over all ranks, in one reduction: returns the
+   largest; sets min_radius (smallest positive radius, instability test) and
+   equal_radius.  Equal particles (the lattice model's own case) take a force
+   loop without the per-partner radius: equal_radius is their radius, or 0 if
+   radii differ or a fix adapt may change them during a run
 ------------------------------------------------------------------------- */
 
-void PairLatticeBond::find_equal_radius()
+double PairLatticeBond::measure_radii()
 {
-  double range[2] = {-BIG, -BIG}, range_all[2];    // max radius, -min radius
+  // max radius, -(smallest positive radius), -(smallest radius)
+  double range[3] = {0.0, -BIG, -BIG}, range_all[3];
   for (int i = 0; i < atom->nlocal; i++) {
-    range[0] = MAX(range[0], atom->radius[i]);
-    range[1] = MAX(range[1], -atom->radius[i]);
+    const double r = atom->radius[i];
+    range[0] = MAX(range[0], r);
+    if (r > 0.0) range[1] = MAX(range[1], -r);
+    range[2] = MAX(range[2], -r);
   }
-  MPI_Allreduce(range, range_all, 2, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(range, range_all, 3, MPI_DOUBLE, MPI_MAX, world);
+  min_radius = (range_all[1] > -BIG) ? -range_all[1] : 0.0;
   const bool adapt = !modify->get_fix_by_style("^adapt").empty();
-  equal_radius = (range_all[0] > 0.0 && range_all[0] == -range_all[1] && !adapt) ? range_all[0] : 0.0;
+  equal_radius = (range_all[0] > 0.0 && range_all[0] == -range_all[2] && !adapt) ? range_all[0] : 0.0;
+  return range_all[0];
 }
 
 /* ----------------------------------------------------------------------
@@ -516,7 +515,7 @@ void PairLatticeBond::refresh_partners()
   }
 
   // atoms created since (fix deposit, ...) may differ in size
-  find_equal_radius();
+  measure_radii();
 
   // unbonded pairs within touching distance + skin: the only ones that can
   // come into contact before the next reneighbouring
@@ -1111,7 +1110,7 @@ template <int F> void PairLatticeBond::eval()
       const BondParams &p = UNIFORM ? p_uniform : prow[type[j]];
       const bool has_shear = SHEAR && (SHEAR_ALL || p.ks > 0.0);
 
-      // separation (used by the tallies only), its length and direction
+      // separation (for the tallies and the corotational frame), its length and direction
       const double dx = xi - x[j][0], dy = yi - x[j][1], dz = PLANAR ? 0.0 : zi - x[j][2];
       const double rr = dist[s];
       const double nx = unit[0][s], ny = unit[1][s], nz = PLANAR ? 0.0 : unit[2][s];

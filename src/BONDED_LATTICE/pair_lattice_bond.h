@@ -94,7 +94,7 @@ class PairLatticeBond : public Pair {
   int own_map;                        // 1 if this style created the atom map
   double min_radius;                  // smallest particle radius (instability test)
   double equal_radius;                // the radius if all particles have it, else 0
-  void find_equal_radius();
+  double measure_radii();    // largest radius; sets min_radius, equal_radius
   double dt_critical;                 // see check_time_step()
   std::vector<double> stiffness_sum;  // per particle, for check_time_step()
   std::vector<int> cand_i, cand_j;    // unbonded pairs that may come into contact
