@@ -13,6 +13,7 @@
 #include "fix_lattice_viscous.h"
 #include "fix_lattice_wall.h"
 #include "lattice_bonds_io.h"
+#include "lattice_quasistatic.h"
 #include "lammps.h"
 #include "pair_lattice_bond.h"
 #include "bonded_lattice_version.h"
@@ -53,7 +54,7 @@ class CommandBondedLatticeInfo : public Command {
       utils::logmesg(lmp,
                      "BONDED_LATTICE {} (built for LAMMPS {}): pair_style lattice/bond, fix "
                      "lattice/nve, fix lattice/viscous, fix lattice/wall, compute lattice/bonds, compute lattice/energy, "
-                     "write_lattice_bonds, read_lattice_bonds\n",
+                     "write_lattice_bonds, read_lattice_bonds, lattice/quasistatic\n",
                      BONDED_LATTICE_VERSION, BONDED_LATTICE_LAMMPS_VERSION);
   }
 };
@@ -69,6 +70,7 @@ Fix *fix_energy_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatti
 Command *info_creator(LAMMPS *lmp) { return new CommandBondedLatticeInfo(lmp); }
 Command *write_bonds_creator(LAMMPS *lmp) { return new WriteLatticeBonds(lmp); }
 Command *read_bonds_creator(LAMMPS *lmp) { return new ReadLatticeBonds(lmp); }
+Command *quasistatic_creator(LAMMPS *lmp) { return new LatticeQuasistatic(lmp); }
 
 }    // namespace
 
@@ -104,5 +106,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
       (void *) &write_bonds_creator);
   add("command", "read_lattice_bonds", INFO("text import of the bond network"),
       (void *) &read_bonds_creator);
+  add("command", "lattice/quasistatic", INFO("quasi-static relax-and-break loading"),
+      (void *) &quasistatic_creator);
 #undef INFO
 }

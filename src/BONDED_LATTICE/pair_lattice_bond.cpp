@@ -54,6 +54,31 @@ static constexpr double ROTATION_FIT_CONDITION = 100.0;
 static constexpr double ROTATION_FIT_DET_FLOOR = 1.0e-6;    // det S / (tr S)^3, 3D
 static constexpr int FIT_VALUES_2D = 7;     // S: xx xy yy; B: xx xy yx yy
 static constexpr int FIT_VALUES_3D = 15;    // S: xx xy xz yy yz zz; B: 9 values
+// bonds between grains: this fraction of the intragranular strength (the
+// Mike/Elle seed: "on average half")
+static constexpr double DEFAULT_BOUNDARY_STRENGTH = 0.5;
+
+/* ----------------------------------------------------------------------
+   a uniform number in [0, 1) for the bond between the particles with tags a
+   and b, the same for (a, b) and (b, a) and on every rank: splitmix64's
+   finaliser over the seed and the two tags (a bijective mix per word, so no
+   two bonds of a model share the input)
+------------------------------------------------------------------------- */
+
+static inline uint64_t mix64(uint64_t z)
+{
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+static inline double bond_uniform(bigint seed, tagint a, tagint b)
+{
+  const uint64_t lo = (uint64_t) (a < b ? a : b), hi = (uint64_t) (a < b ? b : a);
+  const uint64_t golden = 0x9e3779b97f4a7c15ULL;
+  const uint64_t z = mix64((mix64(mix64((uint64_t) seed + golden) ^ lo) + golden) ^ hi);
+  return (double) (z >> 11) * 0x1.0p-53;    // the top 53 bits: every double in [0, 1) equally likely
+}
 
 /* ---------------------------------------------------------------------- */
 
@@ -63,7 +88,10 @@ PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
     fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), partner_stride(0), own_map(0), min_radius(0.0), equal_radius(0.0),
     dt_critical(0.0), shear_pairs(SHEAR_PAIRS_SOME),
     any_friction(1), uniform_params(0), tally_flag(0), spin(nullptr), spin_nmax(0),
-    fit_values(0), comm_what(COMM_DISPLACEMENT)
+    fit_values(0), comm_what(COMM_DISPLACEMENT), hetero_flag(0), strength_min(1.0),
+    strength_max(1.0), boundary_strength(DEFAULT_BOUNDARY_STRENGTH), strength_seed(0),
+    stiffness_index(-1), grain_index(-1), stiffness_factor(nullptr), grain_id(nullptr),
+    breaking_enabled(true)
 {
   shear_frame = SHEAR_FRAME_FIXED;
   heat[0] = heat[1] = heat[2] = 0.0;
@@ -121,10 +149,20 @@ void PairLatticeBond::allocate()
 /* ----------------------------------------------------------------------
    pair_style lattice/bond [tolerance t] [maxslot n] [cutoff rc]
                            [shear_frame fixed|corotational]
+                           [stiffness d_name] [grain i_name]
+                           [strength min max] [seed n] [boundary_strength f]
 ------------------------------------------------------------------------- */
 
 void PairLatticeBond::settings(int narg, char **arg)
 {
+  // a new pair_style command states the heterogeneity anew
+  hetero_flag = 0;
+  stiffness_name.clear();
+  grain_name.clear();
+  strength_min = strength_max = 1.0;
+  boundary_strength = DEFAULT_BOUNDARY_STRENGTH;
+  strength_seed = 0;
+
   int iarg = 0;
   while (iarg < narg) {
     const std::string key = arg[iarg];
@@ -151,12 +189,48 @@ void PairLatticeBond::settings(int narg, char **arg)
       else
         error->all(FLERR, "pair_style lattice/bond shear_frame {} is not valid: use fixed or "
                    "corotational", value);
+    } else if (key == "stiffness" || key == "grain") {
+      const std::string name = arg[iarg + 1];
+      const char *prefix = (key == "stiffness") ? "d_" : "i_";
+      if (name.size() < 3 || name.compare(0, 2, prefix) != 0)
+        error->all(FLERR, "pair_style lattice/bond {} {}: give a per-atom property of fix "
+                   "property/atom as {}name ({} per particle)", key, name, prefix,
+                   key == "stiffness" ? "a floating-point stiffness factor" : "an integer grain ID");
+      (key == "stiffness" ? stiffness_name : grain_name) = name.substr(2);
+      hetero_flag = 1;
+    } else if (key == "strength") {
+      if (iarg + 2 >= narg)
+        error->all(FLERR, "pair_style lattice/bond strength needs two values: min max");
+      strength_min = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      strength_max = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      if (!(strength_min > 0.0) || !(strength_max >= strength_min))
+        error->all(FLERR, "pair_style lattice/bond strength {} {} is out of range: need 0 < min "
+                   "<= max (factors of the breaking force Kn*Xb and of Fs0)", strength_min,
+                   strength_max);
+      hetero_flag = 1;
+      iarg += 1;
+    } else if (key == "seed") {
+      strength_seed = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (strength_seed <= 0)
+        error->all(FLERR, "pair_style lattice/bond seed {} is out of range: need a positive integer",
+                   strength_seed);
+    } else if (key == "boundary_strength") {
+      boundary_strength = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(boundary_strength > 0.0))
+        error->all(FLERR, "pair_style lattice/bond boundary_strength {} is out of range: need > 0 "
+                   "(a factor of the strength of bonds between different grains)", boundary_strength);
     } else {
       error->all(FLERR, "Unknown pair_style lattice/bond keyword {}: valid are tolerance, maxslot, "
-                 "cutoff, shear_frame", key);
+                 "cutoff, shear_frame, stiffness, grain, strength, seed, boundary_strength", key);
     }
     iarg += 2;
   }
+  if (strength_max > strength_min && strength_seed <= 0)
+    error->all(FLERR, "pair_style lattice/bond strength {} {} draws a random strength per bond: "
+               "give its seed (keyword seed, a positive integer)", strength_min, strength_max);
+  if (boundary_strength != DEFAULT_BOUNDARY_STRENGTH && grain_name.empty())
+    error->all(FLERR, "pair_style lattice/bond boundary_strength needs the keyword grain (which "
+               "particles belong to which grain)");
   if (!allocated && domain->box_exist) allocate();
 }
 
@@ -216,6 +290,7 @@ void PairLatticeBond::init_style()
   if (!allocated) error->all(FLERR, "pair_style lattice/bond has no pair_coeff: give one for every type pair");
 
   ensure_atom_map();
+  find_heterogeneity();
 
   // which physics the type pairs use: the force loop is compiled for it
   const int nt = atom->ntypes;
@@ -264,6 +339,153 @@ void PairLatticeBond::init_style()
   // a half list that holds each local-ghost pair on both ranks: the rank of
   // the lower tag finds every pair it must own (half the memory of a full list)
   neighbor->add_request(this, NeighConst::REQ_NEWTON_OFF);
+}
+
+/* ----------------------------------------------------------------------
+   heterogeneity: the per-atom properties named by the keywords stiffness and
+   grain (fix property/atom), checked on every run.  Their ghost values are
+   sent by this style at every reneighbouring (refresh_partners), so the fix
+   does not need "ghost yes"
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::find_heterogeneity()
+{
+  stiffness_index = grain_index = -1;
+  stiffness_factor = nullptr;
+  grain_id = nullptr;
+  if (!hetero_flag) return;
+  auto lookup = [&](const std::string &name, int want_double) -> int {
+    int flag = -1, cols = -1;
+    const int index = atom->find_custom(name.c_str(), flag, cols);
+    const char *what = want_double ? "d_" : "i_";
+    if (index < 0)
+      error->all(FLERR, "pair_style lattice/bond: per-atom property {}{} does not exist; define it "
+                 "with fix property/atom {}{} before the run (and give its values, e.g. read_data "
+                 "... fix ID NULL Section, or set)", what, name, what, name);
+    if (flag != want_double || cols != 0)
+      error->all(FLERR, "pair_style lattice/bond: per-atom property {} must be a single {} value "
+                 "per atom ({}{})", name, want_double ? "floating-point" : "integer", what, name);
+    return index;
+  };
+  if (!stiffness_name.empty()) {
+    stiffness_index = lookup(stiffness_name, 1);
+    stiffness_factor = atom->dvector[stiffness_index];
+    for (int i = 0; i < atom->nlocal; i++)
+      if (!(stiffness_factor[i] > 0.0) || !std::isfinite(stiffness_factor[i]))
+        error->one(FLERR, "pair_style lattice/bond: atom {} has stiffness factor d_{} = {}; need a "
+                   "finite value > 0 (it multiplies Kn and Ks)", atom->tag[i], stiffness_name,
+                   stiffness_factor[i]);
+  }
+  if (!grain_name.empty()) {
+    grain_index = lookup(grain_name, 0);
+    grain_id = atom->ivector[grain_index];
+    for (int i = 0; i < atom->nlocal; i++)
+      if (grain_id[i] < 0)
+        error->one(FLERR, "pair_style lattice/bond: atom {} has grain ID i_{} = {}; need >= 0",
+                   atom->tag[i], grain_name, grain_id[i]);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLatticeBond::fetch_heterogeneity()
+{
+  stiffness_factor = (stiffness_index >= 0) ? atom->dvector[stiffness_index] : nullptr;
+  grain_id = (grain_index >= 0) ? atom->ivector[grain_index] : nullptr;
+}
+
+/* ----------------------------------------------------------------------
+   the bond's stiffness factor: the mean of its particles' factors (the
+   average stiffness of two grains across their boundary)
+------------------------------------------------------------------------- */
+
+double PairLatticeBond::bond_stiffness_factor(int i, int j) const
+{
+  return stiffness_factor ? 0.5 * (stiffness_factor[i] + stiffness_factor[j]) : 1.0;
+}
+
+/* ----------------------------------------------------------------------
+   the bond's strength factor: uniform in [strength_min, strength_max] per
+   bond, times boundary_strength if the particles belong to different grains
+------------------------------------------------------------------------- */
+
+double PairLatticeBond::bond_strength_factor(int i, int j) const
+{
+  double g = strength_min;
+  if (strength_max > strength_min)
+    g += (strength_max - strength_min) * bond_uniform(strength_seed, atom->tag[i], atom->tag[j]);
+  if (grain_id && grain_id[i] != grain_id[j]) g *= boundary_strength;
+  return g;
+}
+
+/* ----------------------------------------------------------------------
+   a bond's parameters: the type pair's; with heterogeneity the stiffnesses
+   scale with the stiffness factor s, the breaking force Kn*Xb and the shear
+   strength Fs0 with the strength factor g (so Xb becomes Xb g / s)
+------------------------------------------------------------------------- */
+
+static inline PairLatticeBond::BondParams scaled_params(const PairLatticeBond::BondParams &p,
+                                                        double s, double g)
+{
+  return {p.kn * s, p.ks * s, p.xb * (g / s), p.fs0 * g, p.mu_p};
+}
+
+PairLatticeBond::BondParams PairLatticeBond::bond_params(int i, int j) const
+{
+  const BondParams &p = params[atom->type[i]][atom->type[j]];
+  if (!hetero_flag) return p;
+  return scaled_params(p, bond_stiffness_factor(i, j), bond_strength_factor(i, j));
+}
+
+/* ----------------------------------------------------------------------
+   how close intact record s of local atom i is to breaking at the current
+   positions and springs (as the last force evaluation left them): the larger
+   of the tensile ratio Fn / (Kn Xb) = Xn / Xb and the shear ratio
+   (Fs + mu_p Fn) / Fs0 (the Coulomb limit Fs <= Fs0 - mu_p Fn as a ratio).
+   A bond breaks when it exceeds 1.  mode: LB_BROKEN_TENSION or
+   LB_BROKEN_SHEAR, the larger one; 0 and LB_INTACT for other records
+------------------------------------------------------------------------- */
+
+double PairLatticeBond::break_ratio(int i, int s, int &mode) const
+{
+  mode = LB_INTACT;
+  const LatticeBondRecord &b = fix_store->records(i)[s];
+  const int j = partner_idx ? partner_idx[(bigint) i * partner_stride + s] : -1;
+  if (b.state != LB_INTACT || j < 0) return 0.0;
+  double **x = atom->x;
+  const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+  const double xn = sqrt(dx * dx + dy * dy + dz * dz) - (atom->radius[i] + atom->radius[j]);
+  const BondParams p = bond_params(i, j);
+  const double fn = p.kn * xn;
+  const double *sh = b.shear;
+  const double fs = p.ks * sqrt(sh[0] * sh[0] + sh[1] * sh[1] + sh[2] * sh[2]);
+  const double tension = xn / p.xb;
+  const double load = fs + p.mu_p * fn;
+  const double shear = (p.fs0 > 0.0) ? load / p.fs0 : (load > 0.0 ? BIG : 0.0);
+  mode = (tension >= shear) ? LB_BROKEN_TENSION : LB_BROKEN_SHEAR;
+  return MAX(tension, shear);
+}
+
+/* ---------------------------------------------------------------------- */
+
+bool PairLatticeBond::has_shear_springs() const
+{
+  if (!allocated) return false;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++)
+      if (coeff_set[i][j] && params[i][j].ks > 0.0) return true;
+  return false;
+}
+
+/* ----------------------------------------------------------------------
+   break intact record s of local atom i in the given mode (lattice/quasistatic);
+   the next force evaluation lets its springs go as the force loop does
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::break_record(int i, int s, int mode)
+{
+  LatticeBondRecord &b = fix_store->records(i)[s];
+  if (b.state == LB_INTACT) b.state = mode;
 }
 
 /* ----------------------------------------------------------------------
@@ -650,7 +872,6 @@ void PairLatticeBond::check_time_step()
 {
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
-  const int *type = atom->type;
   const double *rmass = atom->rmass;
   stiffness_sum.assign(nall, 0.0);
   for (int i = 0; i < nlocal; i++) {
@@ -658,7 +879,7 @@ void PairLatticeBond::check_time_step()
     for (int s = 0; s < fix_store->nrec[i]; s++) {
       const int j = idx[s];
       if (j < 0) continue;
-      const BondParams &p = params[type[i]][type[j]];
+      const BondParams p = bond_params(i, j);
       const double k = MAX(p.kn, p.ks);
       stiffness_sum[i] += k;
       stiffness_sum[j] += k;
@@ -747,6 +968,12 @@ void PairLatticeBond::compute(int eflag, int vflag)
   // 2D records read from a bond file or an older restart file hold vectors
   const bool convert = domain->dimension == 2 &&
       fix_store->shear_layout == FixLatticeBondStore::SHEAR_VECTOR;
+  fetch_heterogeneity();
+  if (rebuilt && hetero_flag) {
+    // the ghosts' stiffness factors and grain IDs, once per reneighbouring
+    comm_what = COMM_HETERO;
+    comm->forward_comm(this);
+  }
   if (rebuilt || convert) refresh_partners();
   if (convert) planar_springs_from_vectors();
   if (!cand_i.empty()) detect_new_contacts();
@@ -755,7 +982,10 @@ void PairLatticeBond::compute(int eflag, int vflag)
   // setup (where a user may have moved atoms between runs) a step longer than
   // a tenth of a radius stops an unstable run before it writes NaN
   const bool setup = update->setupflag;
-  const int runaway = fix_store->update_displacements(setup ? 0.0 : STEP_LIMIT_FRACTION * min_radius);
+  // (a minimiser's line search may try long steps: no test there)
+  const bool minimizing = (update->whichflag == 2);
+  const int runaway = fix_store->update_displacements(
+      (setup || minimizing) ? 0.0 : STEP_LIMIT_FRACTION * min_radius);
   if (runaway >= 0) report_instability(runaway);
   comm_what = COMM_DISPLACEMENT;
   comm->forward_comm(this);
@@ -782,9 +1012,11 @@ int PairLatticeBond::scene_features() const
   // 2D records hold signed scalar springs: every 2D loop is planar
   const int planar = (domain->dimension == 2) ? LB_PLANAR : 0;
   const int corotate = corotational() ? LB_COROTATE : 0;
+  const int hetero = hetero_flag ? LB_HETERO : 0;
   if (evflag)
-    return LB_EV | LB_SHEAR_SOME | LB_FRICTION | planar | (tally_flag ? LB_TALLY : 0) | corotate;
-  int features = planar | (tally_flag ? LB_TALLY : 0) | corotate;
+    return LB_EV | LB_SHEAR_SOME | LB_FRICTION | planar | (tally_flag ? LB_TALLY : 0) | corotate |
+        hetero;
+  int features = planar | (tally_flag ? LB_TALLY : 0) | corotate | hetero;
   if (uniform_params) features |= LB_UNIFORM;
   if (shear_pairs == SHEAR_PAIRS_ALL) features |= LB_SHEAR_ALL;
   else if (shear_pairs == SHEAR_PAIRS_SOME) features |= LB_SHEAR_SOME;
@@ -800,7 +1032,7 @@ int PairLatticeBond::scene_features() const
 template <int F> constexpr PairLatticeBond::EvalFn PairLatticeBond::eval_entry()
 {
   constexpr int GENERAL =
-      LB_SHEAR_SOME | LB_FRICTION | (F & (LB_EV | LB_TALLY | LB_PLANAR | LB_COROTATE));
+      LB_SHEAR_SOME | LB_FRICTION | (F & (LB_EV | LB_TALLY | LB_PLANAR | LB_COROTATE | LB_HETERO));
   constexpr bool both_shear = (F & LB_SHEAR_ALL) && (F & LB_SHEAR_SOME);
   // without shear springs there is nothing to corotate (corotational() is false)
   constexpr bool idle_corotate = (F & LB_COROTATE) && !(F & (LB_SHEAR_ALL | LB_SHEAR_SOME | LB_EV));
@@ -1036,7 +1268,9 @@ static inline bool breaks_in_shear(double fs0, double mu_p, double fn, double fs
    every / some type pair has Ks > 0 (neither: no shear springs);
    LB_FRICTION: some type pair has mu_p > 0 (without it broken bonds and
    contacts are frictionless and carry no shear spring); LB_EQUAL: every
-   particle has the same radius (no per-partner radius load).
+   particle has the same radius (no per-partner radius load); LB_HETERO:
+   each bond scales its type pair's parameters by its stiffness and
+   strength factors (scaled_params).
 
    Heat is the energy a record's springs lose other than by doing work on the
    particles, with the work over a step taken by the trapezoidal rule, which is
@@ -1060,6 +1294,7 @@ template <int F> void PairLatticeBond::eval()
   constexpr bool FRICTION = F & LB_FRICTION;
   constexpr bool EQUAL = F & LB_EQUAL;
   constexpr bool COROTATE = F & LB_COROTATE;
+  constexpr bool HETERO = F & LB_HETERO;
 
   // LAMMPS keeps x and f contiguous: index them as arrays of triples
   const auto *const x = reinterpret_cast<const double(*)[3]>(atom->x[0]);
@@ -1073,6 +1308,7 @@ template <int F> void PairLatticeBond::eval()
   const BondParams p_uniform = params[1][1];
   const double touch_equal = 2.0 * equal_radius;    // r + r is exact: the same bits
   const auto *const w = COROTATE ? reinterpret_cast<const double(*)[3]>(spin[0]) : nullptr;
+  const bool can_break = breaking_enabled;    // off while lattice/quasistatic relaxes
   double q_break_n = 0.0, q_break_s = 0.0, q_friction = 0.0;
 
   for (int i = 0; i < nlocal; i++) {
@@ -1107,7 +1343,11 @@ template <int F> void PairLatticeBond::eval()
       const int j = idx[s];
       if (RARE(j < 0)) continue;    // broken bond whose partner is far away
       LatticeBondRecord &b = r[s];
-      const BondParams &p = UNIFORM ? p_uniform : prow[type[j]];
+      const BondParams &p_type = UNIFORM ? p_uniform : prow[type[j]];
+      // heterogeneous rock: this bond's own stiffness and strength
+      BondParams p_bond;
+      if (HETERO) p_bond = scaled_params(p_type, bond_stiffness_factor(i, j), bond_strength_factor(i, j));
+      const BondParams &p = HETERO ? p_bond : p_type;
       const bool has_shear = SHEAR && (SHEAR_ALL || p.ks > 0.0);
 
       // separation (for the tallies and the corotational frame), its length and direction
@@ -1131,7 +1371,7 @@ template <int F> void PairLatticeBond::eval()
           PLANAR ? (uy * nx - ux * ny) * (1.0 + 0.5 * (ux * nx + uy * ny) * dinv[s]) : 0.0;
 
       int state = b.state;
-      if (RARE(state == LB_INTACT && xn > p.xb)) {
+      if (RARE(state == LB_INTACT && xn > p.xb && can_break)) {
         // tensile break: both springs let go
         b.state = LB_BROKEN_TENSION;
         state = LB_BROKEN_TENSION;
@@ -1152,7 +1392,7 @@ template <int F> void PairLatticeBond::eval()
       const double fn = p.kn * xn;    // normal force, tension positive
       double fsx = 0.0, fsy = 0.0, fsz = 0.0, es = 0.0;
 
-      if (state == LB_INTACT && !has_shear && p.fs0 - p.mu_p * fn < 0.0) {
+      if (state == LB_INTACT && !has_shear && p.fs0 - p.mu_p * fn < 0.0 && can_break) {
         // no shear spring: the bond fails in shear only when its Coulomb
         // limit itself becomes negative (tension above Fs0/mu_p)
         b.state = LB_BROKEN_SHEAR;
@@ -1172,7 +1412,7 @@ template <int F> void PairLatticeBond::eval()
         double sig = s1 + dtan;
         int broke_now = 0;
         const double fs2 = p.ks * p.ks * sig * sig;
-        if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2))) {
+        if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break)) {
           b.state = LB_BROKEN_SHEAR;
           state = LB_BROKEN_SHEAR;
           broke_now = 1;
@@ -1242,7 +1482,7 @@ template <int F> void PairLatticeBond::eval()
         }
         int broke_now = 0;
         const double fs2 = p.ks * p.ks * s2;
-        if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2))) {
+        if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break)) {
           b.state = LB_BROKEN_SHEAR;
           state = LB_BROKEN_SHEAR;
           broke_now = 1;
@@ -1395,6 +1635,13 @@ int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int /*pbc_
       for (int c = c0; c < 3; c++) buf[m++] = spin[list[k]][c];
     return m;
   }
+  if (comm_what == COMM_HETERO) {    // stiffness factor and grain ID (exact as a double)
+    for (int k = 0; k < n; k++) {
+      buf[m++] = stiffness_factor ? stiffness_factor[list[k]] : 1.0;
+      buf[m++] = grain_id ? (double) grain_id[list[k]] : 0.0;
+    }
+    return m;
+  }
   for (int k = 0; k < n; k++)
     for (int c = 0; c < dim; c++) buf[m++] = disp[list[k]][c];
   return m;
@@ -1413,6 +1660,14 @@ void PairLatticeBond::unpack_forward_comm(int n, int first, double *buf)
       for (int c = c0; c < 3; c++) spin[i][c] = buf[m++];
     return;
   }
+  if (comm_what == COMM_HETERO) {
+    for (int i = first; i < first + n; i++) {
+      if (stiffness_factor) stiffness_factor[i] = buf[m];
+      if (grain_id) grain_id[i] = (int) buf[m + 1];
+      m += 2;
+    }
+    return;
+  }
   for (int i = first; i < first + n; i++)
     for (int c = 0; c < dim; c++) disp[i][c] = buf[m++];
 }
@@ -1427,7 +1682,6 @@ double PairLatticeBond::local_elastic_energy() const
   if (!fix_store || !partner_idx) return 0.0;
   double **x = atom->x;
   const double *radius = atom->radius;
-  const int *type = atom->type;
   double energy = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     const LatticeBondRecord *r = fix_store->records(i);
@@ -1438,7 +1692,7 @@ double PairLatticeBond::local_elastic_energy() const
       const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
       const double xn = sqrt(dx * dx + dy * dy + dz * dz) - (radius[i] + radius[j]);
       if (r[s].state != LB_INTACT && xn >= 0.0) continue;
-      const BondParams &p = params[type[i]][type[j]];
+      const BondParams p = bond_params(i, j);
       const double *sh = r[s].shear;
       energy += 0.5 * p.kn * xn * xn + 0.5 * p.ks * (sh[0] * sh[0] + sh[1] * sh[1] + sh[2] * sh[2]);
     }
@@ -1450,10 +1704,18 @@ double PairLatticeBond::local_elastic_energy() const
 
 /* ----------------------------------------------------------------------
    settings: tolerance, then a negative settings format (files before the
-   shear_frame keyword have maxslot >= 1 there), maxslot, cutoff, shear_frame
+   shear_frame keyword have maxslot >= 1 there), maxslot, cutoff, shear_frame;
+   format 3 adds the heterogeneity keywords
 ------------------------------------------------------------------------- */
 
-static constexpr int SETTINGS_FORMAT = 2;
+static constexpr int SETTINGS_FORMAT = 3;
+
+static void write_string(FILE *fp, const std::string &text)
+{
+  const int n = (int) text.size();
+  fwrite(&n, sizeof(int), 1, fp);
+  if (n) fwrite(text.data(), sizeof(char), n, fp);
+}
 
 void PairLatticeBond::write_restart_settings(FILE *fp)
 {
@@ -1463,6 +1725,30 @@ void PairLatticeBond::write_restart_settings(FILE *fp)
   fwrite(&maxslot, sizeof(int), 1, fp);
   fwrite(&cut_user, sizeof(double), 1, fp);
   fwrite(&shear_frame, sizeof(int), 1, fp);
+  fwrite(&hetero_flag, sizeof(int), 1, fp);
+  write_string(fp, stiffness_name);
+  write_string(fp, grain_name);
+  const double range[3] = {strength_min, strength_max, boundary_strength};
+  fwrite(range, sizeof(double), 3, fp);
+  fwrite(&strength_seed, sizeof(bigint), 1, fp);
+}
+
+/* ----------------------------------------------------------------------
+   a string written by write_string, read on rank 0 and sent to all
+------------------------------------------------------------------------- */
+
+static std::string read_string(LAMMPS *lmp, FILE *fp)
+{
+  int n = 0;
+  std::string text;
+  if (lmp->comm->me == 0) utils::sfread(FLERR, &n, sizeof(int), 1, fp, nullptr, lmp->error);
+  MPI_Bcast(&n, 1, MPI_INT, 0, lmp->world);
+  if (n < 0 || n > 4096) lmp->error->all(FLERR, "Corrupt pair_style lattice/bond restart settings");
+  text.resize(n);
+  if (lmp->comm->me == 0 && n)
+    utils::sfread(FLERR, &text[0], sizeof(char), n, fp, nullptr, lmp->error);
+  if (n) MPI_Bcast(&text[0], n, MPI_CHAR, 0, lmp->world);
+  return text;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -1476,18 +1762,42 @@ void PairLatticeBond::read_restart_settings(FILE *fp)
     if (word > 0) {    // format 1: maxslot, cutoff; the papers' shear frame
       maxslot = word;
       shear_frame = SHEAR_FRAME_FIXED;
-    } else if (word == -SETTINGS_FORMAT) {
+    } else if (word == -2 || word == -3) {
       utils::sfread(FLERR, &maxslot, sizeof(int), 1, fp, nullptr, error);
     }
-    if (word > 0 || word == -SETTINGS_FORMAT)
+    if (word > 0 || word == -2 || word == -3)
       utils::sfread(FLERR, &cut_user, sizeof(double), 1, fp, nullptr, error);
-    if (word == -SETTINGS_FORMAT) utils::sfread(FLERR, &shear_frame, sizeof(int), 1, fp, nullptr, error);
+    if (word == -2 || word == -3)
+      utils::sfread(FLERR, &shear_frame, sizeof(int), 1, fp, nullptr, error);
   }
   MPI_Bcast(&word, 1, MPI_INT, 0, world);
-  if (word <= 0 && word != -SETTINGS_FORMAT)
+  if (word <= 0 && word != -2 && word != -3)
     error->all(FLERR, "This restart file holds pair_style lattice/bond settings in format {} "
-               "(a newer BONDED_LATTICE version); this version reads formats 1 and {}", -word,
+               "(a newer BONDED_LATTICE version); this version reads formats 1 to {}", -word,
                SETTINGS_FORMAT);
+  // format 3: the heterogeneity keywords; older files have none
+  hetero_flag = 0;
+  stiffness_name.clear();
+  grain_name.clear();
+  strength_min = strength_max = 1.0;
+  boundary_strength = DEFAULT_BOUNDARY_STRENGTH;
+  strength_seed = 0;
+  if (word == -3) {
+    if (comm->me == 0) utils::sfread(FLERR, &hetero_flag, sizeof(int), 1, fp, nullptr, error);
+    MPI_Bcast(&hetero_flag, 1, MPI_INT, 0, world);
+    stiffness_name = read_string(lmp, fp);
+    grain_name = read_string(lmp, fp);
+    double range[3] = {1.0, 1.0, DEFAULT_BOUNDARY_STRENGTH};
+    if (comm->me == 0) {
+      utils::sfread(FLERR, range, sizeof(double), 3, fp, nullptr, error);
+      utils::sfread(FLERR, &strength_seed, sizeof(bigint), 1, fp, nullptr, error);
+    }
+    MPI_Bcast(range, 3, MPI_DOUBLE, 0, world);
+    MPI_Bcast(&strength_seed, 1, MPI_LMP_BIGINT, 0, world);
+    strength_min = range[0];
+    strength_max = range[1];
+    boundary_strength = range[2];
+  }
   MPI_Bcast(&tolerance, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&maxslot, 1, MPI_INT, 0, world);
   MPI_Bcast(&cut_user, 1, MPI_DOUBLE, 0, world);

@@ -53,6 +53,16 @@ class PairLatticeBond : public Pair {
   struct BondParams {
     double kn, ks, xb, fs0, mu_p;
   };
+  // the parameters of the bond (or contact) between local or ghost atoms i
+  // and j: their type pair's, scaled by the heterogeneity keywords if given
+  BondParams bond_params(int i, int j) const;
+  // heterogeneity (keywords stiffness, grain, strength, seed): the bond's
+  // stiffness factor (mean of the particles' factors) and strength factor
+  // (uniform in [strength_min, strength_max] from a hash of seed and tags,
+  // times boundary_strength across grain boundaries)
+  bool heterogeneous() const { return hetero_flag; }
+  double bond_stiffness_factor(int i, int j) const;
+  double bond_strength_factor(int i, int j) const;
 
   FixLatticeBondStore *store() const { return fix_store; }
   FixLatticeBondStore *acquire_store();    // find or create the record store
@@ -71,6 +81,14 @@ class PairLatticeBond : public Pair {
   const double *heat_tallies() const { return heat; }
   void enable_tallies(int flag) { tally_flag = flag; }
   double local_elastic_energy() const;
+
+  // quasi-static loading (command lattice/quasistatic): breaking is switched
+  // off while it relaxes; it breaks the most over-stressed bonds itself
+  void enable_breaking(bool flag) { breaking_enabled = flag; }
+  double break_ratio(int i, int s, int &mode) const;
+  void break_record(int i, int s, int mode);
+  bool has_shear_springs() const;    // some type pair has Ks > 0
+  double smallest_radius() const { return min_radius; }
 
  protected:
   BondParams **params;
@@ -112,8 +130,22 @@ class PairLatticeBond : public Pair {
   std::vector<double> fit_sums;       // per particle: the sums of the fit (see local_rotations)
   int fit_values;                     // values per particle in fit_sums
   // what forward/reverse communication carries
-  enum { COMM_DISPLACEMENT, COMM_SPIN, COMM_STIFFNESS, COMM_FIT };
+  enum { COMM_DISPLACEMENT, COMM_SPIN, COMM_STIFFNESS, COMM_FIT, COMM_HETERO };
   int comm_what;
+
+  // heterogeneity keywords (docs/pair_lattice_bond.rst, "Heterogeneous rock")
+  int hetero_flag;                    // 1 if any of them is given
+  std::string stiffness_name;         // per-particle stiffness factor, d_ property or ""
+  std::string grain_name;             // per-particle grain ID, i_ property or ""
+  double strength_min, strength_max;  // per-bond strength factor range
+  double boundary_strength;           // strength factor of bonds between grains
+  bigint strength_seed;
+  int stiffness_index, grain_index;   // their indices among the custom properties, or -1
+  double *stiffness_factor;           // their arrays, fetched anew at every step (they move
+  int *grain_id;                      // when the atom arrays grow)
+  void find_heterogeneity();
+  void fetch_heterogeneity();
+  bool breaking_enabled;              // see enable_breaking()
 
   void allocate();
   void warn_data_file_has_no_bonds();
@@ -141,7 +173,8 @@ class PairLatticeBond : public Pair {
     LB_FRICTION = 64,     // some type pair has contact friction
     LB_EQUAL = 128,       // all particles have the same radius
     LB_COROTATE = 256,    // shear_frame corotational: remove the local rigid rotation
-    LB_NFEATURES = 512
+    LB_HETERO = 512,      // per-bond stiffness and strength factors (heterogeneous rock)
+    LB_NFEATURES = 1024
   };
   using EvalFn = void (PairLatticeBond::*)();
   int scene_features() const;

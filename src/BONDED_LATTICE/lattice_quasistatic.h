@@ -1,0 +1,49 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
+
+   lattice/quasistatic: quasi-static loading in the manner of the Mike/Elle
+   spring lattice.  Relax to a force tolerance, break the most over-stressed
+   bond (or all bonds past their threshold), relax again, until no intact
+   bond exceeds its threshold.  The strain step between calls is the input
+   script's (change_box ... remap is the seed's affine pre-displacement).
+------------------------------------------------------------------------- */
+
+#ifdef COMMAND_CLASS
+// clang-format off
+CommandStyle(lattice/quasistatic,LatticeQuasistatic);
+// clang-format on
+#else
+
+#ifndef LMP_LATTICE_QUASISTATIC_H
+#define LMP_LATTICE_QUASISTATIC_H
+
+#include "command.h"
+
+namespace LAMMPS_NS {
+
+class PairLatticeBond;
+
+class LatticeQuasistatic : public Command {
+ public:
+  LatticeQuasistatic(class LAMMPS *lmp) : Command(lmp) {}
+  void command(int, char **) override;
+
+ private:
+  PairLatticeBond *pair = nullptr;
+  double ftol = 0.0;            // force tolerance (force units): largest |f| of a particle
+  bool minimize = true;         // relax by the minimiser, else by damped dynamics
+  bigint chunk = 100;           // relax run: steps between force checks
+  bigint maxsteps = 100000;     // per relaxation: minimiser iterations or time steps
+  bool break_all = false;       // break every bond past its threshold, else the worst one
+  bigint maxbreak = -1;         // most bonds broken in one call, -1: no limit
+
+  bigint relax();               // returns the iterations or steps taken
+  double largest_force() const;
+  double worst_bond(tagint &owner, tagint &partner, int &mode) const;
+  bigint break_beyond_threshold(int &tension, int &shear);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif
