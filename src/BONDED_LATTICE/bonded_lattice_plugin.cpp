@@ -5,6 +5,7 @@
    ABI (Developer_plugins.rst) is declared here.
 ------------------------------------------------------------------------- */
 
+#include "compute_lattice_bond_local.h"
 #include "compute_lattice_bonds.h"
 #include "compute_lattice_energy.h"
 #include "fix_lattice_energy.h"
@@ -53,7 +54,7 @@ class CommandBondedLatticeInfo : public Command {
     if (comm->me == 0)
       utils::logmesg(lmp,
                      "BONDED_LATTICE {} (built for LAMMPS {}): pair_style lattice/bond, fix "
-                     "lattice/nve, fix lattice/viscous, fix lattice/wall, compute lattice/bonds, compute lattice/energy, "
+                     "lattice/nve, fix lattice/viscous, fix lattice/wall, compute lattice/bonds, compute lattice/bond/local, compute lattice/energy, "
                      "write_lattice_bonds, read_lattice_bonds, lattice/quasistatic\n",
                      BONDED_LATTICE_VERSION, BONDED_LATTICE_LAMMPS_VERSION);
   }
@@ -65,6 +66,7 @@ Fix *fix_nve_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeN
 Fix *fix_viscous_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeViscous(lmp, narg, arg); }
 Fix *fix_wall_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeWall(lmp, narg, arg); }
 Compute *compute_bonds_creator(LAMMPS *lmp, int narg, char **arg) { return new ComputeLatticeBonds(lmp, narg, arg); }
+Compute *compute_bond_local_creator(LAMMPS *lmp, int narg, char **arg) { return new ComputeLatticeBondLocal(lmp, narg, arg); }
 Compute *compute_energy_creator(LAMMPS *lmp, int narg, char **arg) { return new ComputeLatticeEnergy(lmp, narg, arg); }
 Fix *fix_energy_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeEnergy(lmp, narg, arg); }
 Command *info_creator(LAMMPS *lmp) { return new CommandBondedLatticeInfo(lmp); }
@@ -99,6 +101,8 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   add("fix", "lattice/wall", INFO("fix lattice/wall"), (void *) &fix_wall_creator);
   add("fix", "LATTICE/ENERGY", INFO("internal energy accounting"), (void *) &fix_energy_creator);
   add("compute", "lattice/bonds", INFO("compute lattice/bonds"), (void *) &compute_bonds_creator);
+  add("compute", "lattice/bond/local", INFO("compute lattice/bond/local"),
+      (void *) &compute_bond_local_creator);
   add("compute", "lattice/energy", INFO("compute lattice/energy"), (void *) &compute_energy_creator);
   add("command", "bonded_lattice/" BONDED_LATTICE_VERSION, INFO("version and style list"),
       (void *) &info_creator);
