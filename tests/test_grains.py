@@ -524,3 +524,42 @@ def test_grain_model_validation():
         GrainModel("elle")
     with pytest.raises(ValueError, match=r"layer_thickness = 0\.0"):
         GrainModel("layer")
+
+
+def test_generate_command_writes_a_heterogeneous_block(tmp_path, capsys):
+    from bonded_lattice.cli import main
+
+    out = tmp_path / "poly"
+    assert main(["generate", "--dim", "2", "--n", "15", "--test", "tension", "--grains", "8",
+                 "--stiffness-sd", "0.2", "--strength", "0.5", "1.5", "--boundary-strength",
+                 "0.4", "--grain-seed", "21", "--out", str(out)]) == 0
+    ids, grain, stiffness = read_grains(out / "data.lattice")
+    lat = hex_block_2d(15, D)
+    assert len(ids) == lat.n == 247
+    lo = lat.positions[:, :2].min(axis=0) - D / 2
+    hi = lat.positions[:, :2].max(axis=0) + D / 2
+    assert np.array_equal(grain, voronoi_grains(lat.positions, lo, hi, 8, 21))
+    assert np.array_equal(stiffness, grain_stiffness(8, 1.0, 0.2, 21)[grain])
+    deck = (out / "in.tension").read_text()
+    assert "read_data       data.lattice fix grains NULL Grains" in deck
+    assert ("lattice/bond grain i_grain stiffness d_stiffness strength 0.5 1.5 seed 21 "
+            "boundary_strength 0.4\n") in deck
+    assert "8 grains of" in capsys.readouterr().out
+    # bad input: the message names the value, exit status 2
+    assert main(["generate", "--dim", "2", "--n", "15", "--grains", "8", "--boundary-strength",
+                 "0", "--out", str(tmp_path / "bad")]) == 2
+    assert "boundary_strength = 0.0 is out of range" in capsys.readouterr().err
+
+
+def test_generate_command_layer(tmp_path):
+    from bonded_lattice.cli import main
+
+    out = tmp_path / "layer"
+    assert main(["generate", "--dim", "2", "--n", "15", "--layer", "3e-3", "4",
+                 "--out", str(out)]) == 0
+    _, grain, stiffness = read_grains(out / "data.lattice")
+    x = hex_block_2d(15, D).positions[:, 0]
+    centre = 0.5 * (x.min() + x.max())          # 7 mm: the layer spans 5.5 to 8.5 mm
+    in_layer = (x >= centre - 1.5e-3) & (x < centre + 1.5e-3)
+    assert np.array_equal(grain, in_layer.astype(int))
+    assert np.array_equal(stiffness, np.where(in_layer, 4.0, 1.0))
