@@ -313,12 +313,18 @@ def test_points_in_non_convex_polygon():
 
 
 def test_shared_edge_belongs_to_one_polygon():
-    left = Polygon(0, np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float))
-    right = Polygon(1, np.array([[1, 0], [2, 0], [2, 1], [1, 1]], float))
-    on_edge = np.array([[1.0, 0.5], [1.0, 0.25]])
-    assert points_in_polygon(on_edge, left.vertices).sum() + \
-        points_in_polygon(on_edge, right.vertices).sum() == 2
-    assert np.all(polygon_grains(on_edge, [left, right]) >= 0)
+    square = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
+    t = np.random.default_rng(3).uniform(0, 1, 300)
+    cases = [  # two polygons and points on their shared edge
+        (square, square + [1, 0], np.c_[np.ones_like(t), t]),          # vertical edge
+        (square, square + [0, 1], np.c_[t, np.ones_like(t)]),          # horizontal edge
+        # a slanted edge from (1, 0) to (0.3, 1), run in opposite senses by the two
+        (np.array([[0, 0], [1, 0], [0.3, 1]]), np.array([[1, 0], [1.3, 1], [0.3, 1]]),
+         np.array([1.0, 0.0]) + t[:, None] * [-0.7, 1.0]),
+    ]
+    for a, b, on_edge in cases:
+        count = points_in_polygon(on_edge, a).astype(int) + points_in_polygon(on_edge, b)
+        assert np.all(count == 1)
 
 
 def elle_with(flynns: str, locations: str) -> str:

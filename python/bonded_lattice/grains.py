@@ -454,8 +454,10 @@ def points_in_polygon(points: np.ndarray, vertices: np.ndarray) -> np.ndarray:
 
     Half-open rule: an edge counts where it crosses the horizontal ray from the
     point towards +x with one end strictly above the point's y and the other at
-    or below it.  Of two polygons that share an edge, a point on that edge is
-    therefore inside exactly one (for edges that are not horizontal).
+    or below it; the crossing is computed from the edge's lower end whichever
+    polygon it belongs to, so it is bitwise the same in two polygons that share
+    the edge.  A point on a shared edge is therefore inside exactly one of the
+    two (on a horizontal edge: the one above).
     """
     p = np.asarray(points, dtype=float).reshape(-1, 2)
     v = np.asarray(vertices, dtype=float).reshape(-1, 2)
@@ -464,6 +466,8 @@ def points_in_polygon(points: np.ndarray, vertices: np.ndarray) -> np.ndarray:
     for (x0, y0), (x1, y1) in zip(v, np.roll(v, -1, axis=0)):
         if y0 == y1:
             continue
+        if y0 > y1:
+            x0, y0, x1, y1 = x1, y1, x0, y0
         crosses = (y0 > y) != (y1 > y)
         x_cross = x0 + (y - y0) * (x1 - x0) / (y1 - y0)
         inside ^= crosses & (x < x_cross)
