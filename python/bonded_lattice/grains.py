@@ -34,9 +34,10 @@ from typing import Sequence
 
 import numpy as np
 
-# numbers of one chunk of a nearest-seed or point-in-polygon search (~32 MB of float64)
+# distances in one chunk of the nearest-seed search (~32 MB of float64)
 CHUNK_ELEMENTS = 4_000_000
-MAX_SEED = 2**31 - 1          # LAMMPS reads the pair_style seed as a 32-bit int
+MAX_SEED = 2**63 - 1          # LAMMPS reads the pair_style seed as a bigint
+MAX_GRAIN = 2**31 - 1         # i_ properties of fix property/atom are 32-bit ints
 MAX_REDRAWS = 1000            # per grain: non-positive stiffness draws are redrawn
 AXES = {"x": 0, "y": 1, "z": 2}
 
@@ -44,7 +45,7 @@ AXES = {"x": 0, "y": 1, "z": 2}
 # ---------------------------------------------------------------- validation
 
 def check_seed(seed: int, name: str = "seed") -> int:
-    """A seed: an integer 1 <= seed <= 2^31 - 1 (LAMMPS reads it as a 32-bit int)."""
+    """A seed: an integer 1 <= seed <= 2^63 - 1 (LAMMPS reads it as a bigint)."""
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)):
         raise ValueError(f"{name} = {seed!r} is out of range: need an integer "
                          f"1 <= {name} <= {MAX_SEED}")
@@ -102,9 +103,9 @@ def check_grain_ids(grain: np.ndarray) -> np.ndarray:
     if g.size and not np.issubdtype(g.dtype, np.integer):
         raise ValueError(f"grain ids have type {g.dtype}: need integers")
     g = g.astype(np.int64).reshape(-1)
-    if g.size and (g.min() < 0 or g.max() > MAX_SEED):
-        bad = g[(g < 0) | (g > MAX_SEED)][0]
-        raise ValueError(f"grain id {bad} is out of range: need 0 <= id <= {MAX_SEED}")
+    if g.size and (g.min() < 0 or g.max() > MAX_GRAIN):
+        bad = g[(g < 0) | (g > MAX_GRAIN)][0]
+        raise ValueError(f"grain id {bad} is out of range: need 0 <= id <= {MAX_GRAIN}")
     return g
 
 
@@ -223,7 +224,6 @@ def voronoi_grains(positions: np.ndarray, box_lo: Sequence[float], box_hi: Seque
     the number of particles).
     """
     seeds = voronoi_seeds(box_lo, box_hi, n_grains, seed)
-    _box(box_lo, box_hi, periodic)
     return nearest_seed(positions, seeds, box_lo, box_hi, periodic)
 
 
@@ -523,6 +523,8 @@ def polygon_grains(positions: np.ndarray, polygons: Sequence[Polygon],
         shifts = np.array([(i, j) for i in ((-1, 0, 1) if per[0] else (0,))
                            for j in ((-1, 0, 1) if per[1] else (0,))]) * length
     grain = np.full(len(p), -1, dtype=np.int64)
+    by_x = np.argsort(p[:, 0], kind="stable")     # bounding-box prefilter: an x range, then y
+    xs = p[by_x, 0]
     for poly in polygons:
         v0 = np.asarray(poly.vertices, dtype=float).reshape(-1, 2)
         if len(v0) < 3:
@@ -531,7 +533,9 @@ def polygon_grains(positions: np.ndarray, polygons: Sequence[Polygon],
         for shift in shifts:
             v = v0 + shift
             lo_v, hi_v = v.min(axis=0), v.max(axis=0)
-            todo = np.nonzero((grain < 0) & np.all((p >= lo_v) & (p <= hi_v), axis=1))[0]
+            todo = by_x[np.searchsorted(xs, lo_v[0], "left"):np.searchsorted(xs, hi_v[0], "right")]
+            y = p[todo, 1]
+            todo = todo[(grain[todo] < 0) & (y >= lo_v[1]) & (y <= hi_v[1])]
             if len(todo):
                 hit = points_in_polygon(p[todo], v)
                 grain[todo[hit]] = poly.grain
