@@ -16,7 +16,6 @@ from bonded_lattice.decks import DeckSpec, deck_text
 from bonded_lattice.grains import (
     GrainModel,
     GrainPairOptions,
-    Polygon,
     competent_layer,
     grain_arrays,
     grain_stiffness,
