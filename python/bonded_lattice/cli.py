@@ -3,6 +3,7 @@
     bonded-lattice convert --rock quartz --dim 2
     bonded-lattice convert --dim 3 --bond 4.6794e7 8.0679e6 1.7037e-7 18.452 0.39645
     bonded-lattice generate --rock quartz --dim 2 --test tension --n 30 --out tension2d
+    bonded-lattice generate --dim 2 --n 60 --grains 40 --stiffness-sd 0.2 --strength 0.5 1.5
     bonded-lattice run --rock quartz --dim 2 --test compression --n 30 --np 2 --out run2d
     bonded-lattice calibrate --rock quartz --dim 2 --n 15 --out cal2d
     bonded-lattice validate [--slow]      # rewrites docs/validation.md
@@ -13,6 +14,8 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+
+import numpy as np
 
 from . import __version__
 
@@ -53,11 +56,22 @@ def cmd_generate(args: argparse.Namespace) -> int:
     bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, args.d, args.dim)
     lattice = build_lattice(args.dim, args.n, args.d, args.orientation)
     plan = plan_test(rock, bond, lattice, args.test, **_plan_options(args))
-    write_data(lattice, out / "data.lattice", plan.mass)
+    model, pair = _grain_model(args)
+    grain = stiffness = None
+    if model is not None:
+        from .grains import grain_arrays
+
+        grain, stiffness = grain_arrays(lattice.positions, lattice.d, model)
+    write_data(lattice, out / "data.lattice", plan.mass, grain=grain, stiffness=stiffness)
     write_deck(deck_spec(plan, args.test, args.dim, bond, args.confining, args.dump_every,
-                         has_mid_height(lattice), args.energy, args.shear_frame),
+                         has_mid_height(lattice), args.energy, args.shear_frame, pair),
                out / f"in.{args.test}")
     print(f"wrote {out / 'data.lattice'} ({lattice.n} particles) and {out / ('in.' + args.test)}")
+    if grain is not None:
+        sizes = np.bincount(grain)
+        sizes = sizes[sizes > 0]
+        print(f"{len(sizes)} grains of {sizes.min()} to {sizes.max()} particles; stiffness "
+              f"factors {stiffness.min():.4g} to {stiffness.max():.4g}")
     print(f"run it with: cd {out} && mpirun -np 2 lmp -in in.{args.test}")
     return 0
 
@@ -135,6 +149,60 @@ def cmd_info(args: argparse.Namespace) -> int:
     return 0
 
 
+def _grain_model(args: argparse.Namespace):
+    """The heterogeneous model the options ask for, and its pair style keywords (or None, None)."""
+    from .grains import GrainModel, GrainPairOptions
+
+    if args.grains is not None:
+        model = GrainModel("voronoi", n_grains=args.grains, periodic=(args.periodic_grains,) * 2,
+                           stiffness_sd=args.stiffness_sd, seed=args.grain_seed)
+    elif args.grain_file is not None:
+        source = "elle" if Path(args.grain_file).suffix == ".elle" else "polygons"
+        model = GrainModel(source, path=args.grain_file, stiffness_sd=args.stiffness_sd,
+                           seed=args.grain_seed, outside=args.outside)
+    elif args.layer is not None:
+        model = GrainModel("layer", layer_thickness=args.layer[0], layer_contrast=args.layer[1],
+                           layer_axis=args.layer_normal, stiffness_sd=args.stiffness_sd,
+                           seed=args.grain_seed)
+    else:
+        return None, None
+    pair = GrainPairOptions(args.strength[0], args.strength[1], args.grain_seed,
+                            args.boundary_strength)
+    return model, pair
+
+
+def _heterogeneity(p: argparse.ArgumentParser) -> None:
+    """Options of a heterogeneous block (generate)."""
+    g = p.add_argument_group("heterogeneous rock (grains.py; needs pair_style lattice/bond's "
+                             "grain keywords)")
+    source = g.add_mutually_exclusive_group()
+    source.add_argument("--grains", type=int, default=None, metavar="N",
+                        help="N grains from a seeded Voronoi tessellation of the block")
+    source.add_argument("--grain-file", default=None, metavar="PATH",
+                        help="grain polygons: an Elle file (*.elle: its unit cell mapped onto "
+                        "the block, periodic) or a plain file of lines 'grain x1 y1 x2 y2 ...' "
+                        "in metres")
+    source.add_argument("--layer", type=float, nargs=2, default=None,
+                        metavar=("THICKNESS", "CONTRAST"),
+                        help="a competent layer of THICKNESS m across the middle of the block, "
+                        "CONTRAST times stiffer than the matrix")
+    g.add_argument("--layer-normal", choices=("x", "y"), default="x",
+                   help="axis normal to the layer (default x: the layer is parallel to the load)")
+    g.add_argument("--periodic-grains", action="store_true",
+                   help="--grains: Voronoi cells periodic across the block's sides")
+    g.add_argument("--outside", choices=("error", "nearest"), default="error",
+                   help="--grain-file: particles in no polygon are an error (default) or join "
+                   "the nearest polygon")
+    g.add_argument("--stiffness-sd", type=float, default=0.0,
+                   help="standard deviation of the grains' stiffness factors (mean 1; default 0)")
+    g.add_argument("--strength", type=float, nargs=2, default=(1.0, 1.0), metavar=("MIN", "MAX"),
+                   help="bond strength factors drawn uniformly in [MIN, MAX] (default 1 1)")
+    g.add_argument("--boundary-strength", type=float, default=0.5,
+                   help="strength factor of bonds across grain boundaries (default 0.5)")
+    g.add_argument("--grain-seed", type=int, default=1,
+                   help="seed of the grains, their stiffness and the bond strengths (default 1)")
+
+
 def _plan_options(args: argparse.Namespace) -> dict:
     """The loading options of a test, as keyword arguments of experiment.plan_test."""
     return {"crossings": args.crossings, "speed": args.speed,
@@ -207,6 +275,7 @@ def main(argv: list[str] | None = None) -> int:
 
     p = sub.add_parser("generate", help="write a lattice data file and a test deck")
     _common(p)
+    _heterogeneity(p)
     p.set_defaults(func=cmd_generate)
 
     p = sub.add_parser("run", help="generate, run, measure and plot one test")

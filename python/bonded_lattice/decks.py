@@ -14,6 +14,12 @@ and loads the block along its loading axis (y in 2D, z in 3D):
   (``fix lattice/wall ... servo``) hold the confining stress ``confining``
   (biaxial in 2D, triaxial in 3D).
 
+A heterogeneous block (``DeckSpec.grains``, :mod:`bonded_lattice.grains`) has
+its grain ids and stiffness factors in the data file's ``Grains`` section; the
+deck defines ``fix grains all property/atom i_grain d_stiffness ghost yes``
+before ``read_data ... fix grains NULL Grains`` and passes the grain, strength
+and boundary options to ``pair_style lattice/bond``.
+
 Two loading schedules:
 
 - ``constant`` (ours, the default): platens or end layers move at a constant
@@ -38,6 +44,7 @@ from pathlib import Path
 from typing import TextIO
 
 from .conversion import BondParameters
+from .grains import GrainPairOptions
 
 TESTS = ("tension", "compression", "elastic", "confined")
 SCHEDULES = ("constant", "stepwise")
@@ -69,12 +76,17 @@ class DeckSpec:
     halt_fraction: float = 0.3  # strength tests stop when |stress| < this x peak (0: never)
     energy: bool = False      # energy budget (compute lattice/energy) in the thermo output
     shear_frame: str = "fixed"  # one of SHEAR_FRAMES (the papers': fixed)
+    # heterogeneous model: the data file has a Grains section (lattice.write_data) and the
+    # pair style reads it; None: homogeneous
+    grains: GrainPairOptions | None = None
 
     def __post_init__(self) -> None:
         if self.test not in TESTS:
             raise ValueError(f"test = {self.test!r} is not known: use one of {', '.join(TESTS)}")
         if self.dim not in (2, 3):
             raise ValueError(f"dim = {self.dim} is out of range: use 2 or 3")
+        if self.grains is not None and not isinstance(self.grains, GrainPairOptions):
+            raise ValueError(f"grains = {self.grains!r}: need a grains.GrainPairOptions or None")
         if self.shear_frame not in SHEAR_FRAMES:
             raise ValueError(f"shear_frame = {self.shear_frame!r} is not known: use one of "
                              f"{', '.join(SHEAR_FRAMES)}")
@@ -142,6 +154,15 @@ def _header(spec: DeckSpec) -> str:
     }[spec.test]
     b = deck_bond(spec)
     boundary = "f f p" if spec.dim == 2 else "f f f"
+    pair_args = "" if spec.shear_frame == "fixed" else " shear_frame " + spec.shear_frame
+    read_data = f"read_data       {spec.data_file}"
+    if spec.grains is not None:
+        pair_args = " " + spec.grains.pair_style_args() + pair_args
+        read_data = (
+            "# grain id and stiffness factor per particle, from the data file's Grains section;\n"
+            "# ghost yes: the pair style needs them for neighbours owned by other ranks\n"
+            "fix             grains all property/atom i_grain d_stiffness ghost yes\n"
+            + read_data + " fix grains NULL Grains")
     return f"""# {title}
 # Written by bonded_lattice.decks; edit freely.  Run: mpirun -np 2 lmp -in <this file>
 # Bond parameters: Kn {b.Kn:.6g} N/m, Ks {b.Ks:.6g} N/m, Xb {b.Xb:.6g} m,
@@ -152,9 +173,9 @@ dimension       {spec.dim}
 boundary        {boundary}
 atom_style      sphere
 newton          on
-read_data       {spec.data_file}
+{read_data}
 
-pair_style      lattice/bond{"" if spec.shear_frame == "fixed" else " shear_frame " + spec.shear_frame}
+pair_style      lattice/bond{pair_args}
 {b.pair_coeff()}
 # a small skin keeps the search for new contacts cheap
 neighbor        {0.1 * spec.d:.6g} bin

@@ -25,6 +25,7 @@ from .conversion import (
     rock_to_bond,
 )
 from .decks import DeckSpec, write_deck
+from .grains import GrainPairOptions
 from .lattice import Lattice, close_packed_block_3d, hex_block_2d, write_data
 from .plotting import broken_bond_map_png, energy_png, stress_strain_png
 from .rocks import Rock
@@ -209,9 +210,15 @@ def has_mid_height(lattice: Lattice) -> bool:
 
 def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
               confining: float = 0.0, dump_every: int = 0, gauges: bool = True,
-              energy: bool = False, shear_frame: str = "fixed") -> DeckSpec:
-    """The deck of a planned run (reads ``data.lattice`` beside it)."""
-    return DeckSpec(gauges=gauges, energy=energy, shear_frame=shear_frame, test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
+              energy: bool = False, shear_frame: str = "fixed",
+              grains: GrainPairOptions | None = None) -> DeckSpec:
+    """The deck of a planned run (reads ``data.lattice`` beside it).
+
+    grains: the pair style's grain keywords of a heterogeneous block, whose
+    data file has a Grains section (:func:`bonded_lattice.grains.grain_arrays`).
+    """
+    return DeckSpec(gauges=gauges, energy=energy, shear_frame=shear_frame, grains=grains,
+                    test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
                     area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps,
                     dt=plan.dt, thermo_every=plan.thermo_every, confining=confining,
                     schedule=plan.schedule, step_size=plan.step_size,

@@ -363,7 +363,8 @@ def pairs_within(positions: np.ndarray,
 
 
 def write_data(lattice: Lattice, path: str | Path, mass: float,
-               atom_types: int | None = None) -> None:
+               atom_types: int | None = None, grain: np.ndarray | None = None,
+               stiffness: np.ndarray | None = None) -> None:
     """Write a LAMMPS data file for ``atom_style sphere``.
 
     Atoms are numbered 1..n in the order of ``lattice.positions``; each line is
@@ -375,10 +376,28 @@ def write_data(lattice: Lattice, path: str | Path, mass: float,
 
     atom_types: number of atom types declared in the header (default: the
         largest type used).
+    grain, stiffness: per-particle grain ids (integers >= 0) and stiffness
+        factors (> 0) of a heterogeneous model (:mod:`bonded_lattice.grains`),
+        both or neither.  They are written as a ``Grains`` section after the
+        atoms, one line ``atom-ID grain stiffness`` per particle: the format of
+        LAMMPS' ``fix property/atom``, read by ``fix grains all property/atom
+        i_grain d_stiffness ghost yes`` defined before ``read_data FILE fix
+        grains NULL Grains`` (:func:`read_grains` reads it back).
     """
     mass = float(mass)
     if not mass > 0:
         raise ValueError(f"mass = {mass} is out of range: need mass > 0")
+    if (grain is None) != (stiffness is None):
+        raise ValueError("grain and stiffness go together (fix property/atom i_grain "
+                         "d_stiffness reads both): give both or neither")
+    if grain is not None:
+        from .grains import check_grain_ids, check_stiffness_factors
+
+        grain = check_grain_ids(grain)
+        stiffness = check_stiffness_factors(stiffness)
+        if len(grain) != lattice.n or len(stiffness) != lattice.n:
+            raise ValueError(f"{len(grain)} grain ids and {len(stiffness)} stiffness factors "
+                             f"for {lattice.n} particles: need one of each per particle")
     ntypes = int(lattice.types.max(initial=1)) if atom_types is None else int(atom_types)
     if lattice.n and (lattice.types.min() < 1 or lattice.types.max() > ntypes):
         raise ValueError(f"atom types must lie in 1..{ntypes}")
@@ -402,4 +421,42 @@ def write_data(lattice: Lattice, path: str | Path, mass: float,
     types, positions = lattice.types.tolist(), lattice.positions.tolist()
     body = [f"{k + 1} {t} {d!r} {density!r} {x!r} {y!r} {z!r}"
             for k, (t, (x, y, z)) in enumerate(zip(types, positions))]
+    if grain is not None:
+        body += ["", GRAINS_SECTION, ""]
+        body += [f"{k + 1} {g} {s!r}"
+                 for k, (g, s) in enumerate(zip(grain.tolist(), stiffness.tolist()))]
     Path(path).write_text("\n".join(lines + body) + "\n")
+
+
+GRAINS_SECTION = "Grains"   # data-file section of fix property/atom i_grain d_stiffness
+
+
+def read_grains(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The ``Grains`` section of a data file: atom ids, grain ids, stiffness factors.
+
+    Reads the section :func:`write_data` writes (header line, blank line, one
+    ``atom-ID grain stiffness`` line per atom, ending at a blank line or the
+    end of the file); raises ``ValueError`` naming the line if one is malformed
+    and if the file has no such section.
+    """
+    lines = Path(path).read_text().splitlines()
+    try:
+        start = next(k for k, line in enumerate(lines)
+                     if line.split("#", 1)[0].strip() == GRAINS_SECTION)
+    except StopIteration:
+        raise ValueError(f"{path}: no {GRAINS_SECTION} section") from None
+    ids, grains, factors = [], [], []
+    k = start + 2   # skip the blank line after the header
+    while k < len(lines) and lines[k].strip():
+        tokens = lines[k].split("#", 1)[0].split()
+        try:
+            if len(tokens) != 3:
+                raise ValueError
+            ids.append(int(tokens[0]))
+            grains.append(int(tokens[1]))
+            factors.append(float(tokens[2]))
+        except ValueError:
+            raise ValueError(f"{path}, line {k + 1}: {lines[k].strip()!r}: need "
+                             "'atom-ID grain stiffness'") from None
+        k += 1
+    return np.array(ids, dtype=np.int64), np.array(grains, dtype=np.int64), np.array(factors)
