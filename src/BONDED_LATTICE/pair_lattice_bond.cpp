@@ -155,14 +155,8 @@ void PairLatticeBond::allocate()
 
 void PairLatticeBond::settings(int narg, char **arg)
 {
-  // a new pair_style command states the heterogeneity anew
-  hetero_flag = 0;
-  stiffness_name.clear();
-  grain_name.clear();
-  strength_min = strength_max = 1.0;
-  boundary_strength = DEFAULT_BOUNDARY_STRENGTH;
-  strength_seed = 0;
-
+  // a repeated pair_style command changes only the keywords it gives (also
+  // after read_restart), like the other settings
   int iarg = 0;
   while (iarg < narg) {
     const std::string key = arg[iarg];
