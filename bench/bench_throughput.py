@@ -152,8 +152,19 @@ MODELS["lattice/bond:two-types"] = {
 # shear measured relative to each particle's local rigid rotation (a pre-pass fits it)
 MODELS["lattice/bond:corotational"] = {**MODELS["lattice/bond"], "after": _LB_AFTER.replace(
     "pair_style      lattice/bond", "pair_style      lattice/bond shear_frame corotational")}
+# heterogeneous rock: grains of about 8 x 8 particles with stiffness factors
+# between 0.8 and 1.2, per-bond strengths uniform in [0.5, 1.5), weaker grain boundaries
+MODELS["lattice/bond:heterogeneous"] = {**MODELS["lattice/bond"], "after": _LB_AFTER.replace(
+    "pair_style      lattice/bond",
+    "fix             grains all property/atom i_grain d_stiffness\n"
+    f"variable        gid atom floor(x/{8 * D})+1000*floor(y/{8 * D})+1000000*floor(z/{8 * D})\n"
+    "variable        sf atom 1.0+0.2*sin(v_gid*1.7)\n"
+    "set             atom * i_grain v_gid\n"
+    "set             atom * d_stiffness v_sf\n"
+    "pair_style      lattice/bond stiffness d_stiffness grain i_grain strength 0.5 1.5 seed 7")}
 FEATURE_MODELS = ["lattice/bond", "lattice/bond:frictionless", "lattice/bond:no-shear",
-                  "lattice/bond:two-types", "lattice/bond+energy", "lattice/bond:corotational"]
+                  "lattice/bond:two-types", "lattice/bond+energy", "lattice/bond:corotational",
+                  "lattice/bond:heterogeneous"]
 
 
 def build_input(name: str, cells: int, dim: int = 3) -> str:

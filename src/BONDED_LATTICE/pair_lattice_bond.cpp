@@ -728,6 +728,7 @@ void PairLatticeBond::refresh_partners()
         idx[s] = j;
       }
     }
+    if (hetero_flag) cache_bond_factors(i);
   }
 
   // atoms created since (fix deposit, ...) may differ in size
@@ -746,6 +747,24 @@ void PairLatticeBond::refresh_partners()
     cand_i.push_back(i);
     cand_j.push_back(j);
   });
+}
+
+/* ----------------------------------------------------------------------
+   the stiffness and strength factors of local atom i's records (see
+   bond_factor); records without a partner here get 1, 1 (unused)
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::cache_bond_factors(int i)
+{
+  const size_t need = (size_t) partner_nmax * partner_stride * 2;
+  if (bond_factor.size() != need) bond_factor.assign(need, 1.0);
+  const int *idx = partner_idx + (bigint) i * partner_stride;
+  double *bf = bond_factor.data() + (size_t) i * partner_stride * 2;
+  for (int s = 0; s < fix_store->nrec[i]; s++) {
+    const int j = idx[s];
+    bf[2 * s] = (j >= 0) ? bond_stiffness_factor(i, j) : 1.0;
+    bf[2 * s + 1] = (j >= 0) ? bond_strength_factor(i, j) : 1.0;
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -823,6 +842,7 @@ void PairLatticeBond::detect_new_contacts()
       rec->state = LB_CONTACT;
       if (fix_store->capacity != partner_stride) relayout_partners();
       partner_idx[(bigint) i * partner_stride + s] = j;
+      if (hetero_flag) cache_bond_factors(i);
       cand_i[c] = cand_i.back();
       cand_j[c] = cand_j.back();
       cand_i.pop_back();
@@ -850,6 +870,8 @@ void PairLatticeBond::relayout_partners()
   memory->destroy(partner_idx);
   partner_idx = fresh;
   partner_stride = stride;
+  if (hetero_flag)
+    for (int i = 0; i < nlocal; i++) cache_bond_factors(i);
 }
 
 /* ----------------------------------------------------------------------
@@ -1310,6 +1332,7 @@ template <int F> void PairLatticeBond::eval()
     if (!nr) continue;
     LatticeBondRecord *__restrict r = fix_store->records(i);
     const int *__restrict idx = partner_idx + (bigint) i * stride;
+    const double *__restrict factors = HETERO ? bond_factor.data() + (size_t) i * stride * 2 : nullptr;
     const double xi = x[i][0], yi = x[i][1], zi = PLANAR ? 0.0 : x[i][2];
     const double dxi = disp[i][0], dyi = disp[i][1], dzi = PLANAR ? 0.0 : disp[i][2];
     const double radi = EQUAL ? 0.0 : radius[i];
@@ -1340,7 +1363,7 @@ template <int F> void PairLatticeBond::eval()
       const BondParams &p_type = UNIFORM ? p_uniform : prow[type[j]];
       // heterogeneous rock: this bond's own stiffness and strength
       BondParams p_bond;
-      if (HETERO) p_bond = scaled_params(p_type, bond_stiffness_factor(i, j), bond_strength_factor(i, j));
+      if (HETERO) p_bond = scaled_params(p_type, factors[2 * s], factors[2 * s + 1]);
       const BondParams &p = HETERO ? p_bond : p_type;
       const bool has_shear = SHEAR && (SHEAR_ALL || p.ks > 0.0);
 
@@ -1887,6 +1910,7 @@ double PairLatticeBond::memory_usage()
 {
   double bytes = Pair::memory_usage();
   bytes += (double) partner_nmax * partner_stride * sizeof(int);
+  bytes += (double) bond_factor.capacity() * sizeof(double);
   bytes += (double) cand_i.capacity() * 2 * sizeof(int);
   bytes += (double) spin_nmax * 3 * sizeof(double);
   bytes += (double) fit_sums.capacity() * sizeof(double);

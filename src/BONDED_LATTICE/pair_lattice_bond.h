@@ -145,6 +145,11 @@ class PairLatticeBond : public Pair {
   int *grain_id;                      // when the atom arrays grow)
   void find_heterogeneity();
   void fetch_heterogeneity();
+  // each record's stiffness and strength factors, 2 per record with the stride of
+  // partner_idx, computed after every reneighbouring (the force loop then needs
+  // neither the hash nor the partner's properties)
+  std::vector<double> bond_factor;
+  void cache_bond_factors(int i);
   bool breaking_enabled;              // see enable_breaking()
 
   void allocate();
