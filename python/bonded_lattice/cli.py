@@ -390,8 +390,9 @@ def main(argv: list[str] | None = None) -> int:
                    help="sd of the grains' stiffness factors, mean 1 (default 0.15)")
     p.add_argument("--strength", type=float, nargs=2, default=[0.8, 1.2],
                    metavar=("MIN", "MAX"), help="bond strength factors, uniform (0.8 1.2)")
-    p.add_argument("--boundary-strength", type=float, default=0.5,
-                   help="strength factor across grain boundaries (default 0.5)")
+    p.add_argument("--boundary-strength", type=float, default=None,
+                   help="strength factor across grain boundaries (default 0.5; 1 for the "
+                   "layer's interfaces)")
     p.add_argument("--grain-seed", type=int, default=1, help="seed of grains and strengths")
     p.add_argument("--expanding", type=int, default=2, help="growing grains (default 2)")
     p.add_argument("--output-every", type=int, default=1,

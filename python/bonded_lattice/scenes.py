@@ -108,8 +108,9 @@ class Scene:
     layer_contrast (layer stiffness / matrix); n_grains Voronoi grains with
     stiffness factors from a Gaussian (mean 1, stiffness_sd); every bond's
     strength factor uniform in [strength_min, strength_max], times
-    boundary_strength across grain (and layer) boundaries; n_expanding
-    grains (those nearest the centre that do not touch a wall) grow.
+    boundary_strength across grain (and layer) boundaries (default 0.5 for
+    grains, 1 for the layer: :attr:`boundary_factor`); n_expanding grains
+    (those nearest the centre, preferably touching no wall) grow.
 
     Loading: quasistatic: n_steps steps of strain_step (engineering strain of
     the box along x; for expanding grains the relative diameter increase of
@@ -134,7 +135,7 @@ class Scene:
     stiffness_sd: float = 0.15
     strength_min: float = 0.8
     strength_max: float = 1.2
-    boundary_strength: float = 0.5
+    boundary_strength: float | None = None   # None: 0.5 (the seed's) for grains, 1 for a layer
     seed: int = 1
     n_expanding: int = 2
     mode: str = "quasistatic"
@@ -212,9 +213,18 @@ class Scene:
         """Effective height rows x sqrt3/2 d (carries sigma_xx)."""
         return self.rows * ROW * self.d
 
+    @property
+    def boundary_factor(self) -> float:
+        """Strength factor across grain boundaries: as given, or 0.5 (the seed's grain
+        boundaries) for the polycrystals and 1 for the layer's interfaces (the seed
+        weakens only grain boundaries; a weak interface would delaminate first)."""
+        if self.boundary_strength is not None:
+            return self.boundary_strength
+        return 1.0 if self.kind.startswith("layer") else 0.5
+
     def pair_options(self) -> GrainPairOptions:
         return GrainPairOptions(self.strength_min, self.strength_max, self.seed,
-                                self.boundary_strength)
+                                self.boundary_factor)
 
     def dt(self) -> float:
         """Time step: dt_fraction x sqrt(2 m / (6 Kn k_max)), the stiffest grain's bonds."""
@@ -238,8 +248,13 @@ class Scene:
         """Dynamic loading time: crossings x width / wave speed."""
         return self.crossings * self.width / self.wave_speed()
 
+    def steps_per_strain_step(self) -> int:
+        """Dynamic: time steps per quasi-static strain step (the output interval unit)."""
+        return max(1, math.ceil(self.duration() / self.dt() / self.n_steps))
+
     def dynamic_steps(self) -> int:
-        return max(1, math.ceil(self.duration() / self.dt()))
+        """Dynamic: time steps of the whole loading, a whole number of output intervals."""
+        return self.steps_per_strain_step() * self.n_steps
 
     def eta(self) -> float:
         """Viscous damping coefficient (N s/m per unit thickness)."""
@@ -332,11 +347,11 @@ def _strain_scales(scene: Scene) -> tuple[str, str]:
     return repr(a), repr(1.0 / a)
 
 
-def _rates(scene: Scene) -> tuple[float, float]:
+def _rates(scene: Scene, duration: float) -> tuple[float, float]:
     """Engineering strain rates (x, y) of the dynamic loading."""
     if scene.kind == "expanding":
         return 0.0, 0.0
-    rate = scene.total_strain() / scene.duration()
+    rate = scene.total_strain() / duration
     return (-rate, rate) if scene.kind == "layer-compression" else (rate, -rate)
 
 
@@ -372,7 +387,7 @@ fix             grains all property/atom i_grain d_stiffness ghost yes
 read_data       {data_file} fix grains NULL Grains
 
 # bond stiffness: mean of the two particles' factors; strength uniform in
-# [{scene.strength_min:g}, {scene.strength_max:g}) x {scene.boundary_strength:g} across grain boundaries
+# [{scene.strength_min:g}, {scene.strength_max:g}) x {scene.boundary_factor:g} across grain boundaries
 pair_style      lattice/bond {scene.pair_options().pair_style_args()}
 {b.pair_coeff()}
 neighbor        {0.1 * d:.6g} bin
@@ -481,17 +496,18 @@ write_dump      all local bonds.final.txt c_bl[*]
 
 
 def _dynamic(scene: Scene) -> str:
-    rx, ry = _rates(scene)
     steps = scene.dynamic_steps()
     dt = scene.dt()
-    per_step = max(1, round(steps / scene.n_steps))     # time steps per QS strain step
+    per_step = scene.steps_per_strain_step()
+    # the rates that reach the total strain at the last step exactly
+    rx, ry = _rates(scene, steps * dt)
     out_every = per_step * scene.output_every
     dumps = ""
     if scene.bond_dumps:
         dumps = (f"dump            bdump all local {per_step * scene.bond_dumps} "
                  "bonds.*.txt c_bl[*]\n")
     if scene.kind == "expanding":
-        rate = scene.total_strain() / scene.duration()
+        rate = scene.total_strain() / (steps * dt)
         growth = (f"variable        growth equal {rate!r}*time\n"
                   f"variable        dgrow equal v_d0*(1+v_growth)\n"
                   "# mass no: only the size grows (the quasi-static loop changes no mass either)\n"
@@ -692,8 +708,7 @@ def picture_scene(scene: Scene, out: str | Path, model: SceneModel | None = None
                     highlight=highlight)
     dated = break_steps(out)
     if dated:
-        per = 1 if scene.mode == "quasistatic" else max(1, round(scene.dynamic_steps()
-                                                                 / scene.n_steps))
+        per = 1 if scene.mode == "quasistatic" else scene.steps_per_strain_step()
         dated = {key: (k // per if k >= 0 else scene.n_steps) for key, k in dated.items()}
         scene_bonds_png(out / f"{prefix}broken_steps.png", model.lattice.positions,
                         model.grain, records, scene.d, broken_at=dated,
