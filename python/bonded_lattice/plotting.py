@@ -281,7 +281,8 @@ def angle_histogram_png(path: str | Path, series: list[tuple[str, np.ndarray]],
         a = np.where(a >= 165, a - 180, a)
         h, _ = np.histogram(a, bins=bins)
         frac = h / max(1, len(a))
-        ax.bar(bins[:-1] + 15 - 15 + width * (k + 0.5), frac, width=width, label=f"{label} ({len(a)})",
+        # the runs side by side within each 30-degree bin
+        ax.bar(bins[:-1] + width * (k + 0.5), frac, width=width, label=f"{label} ({len(a)})",
                align="edge")
     ax.set_xticks([0, 30, 60, 90, 120, 150])
     ax.set_xlabel("broken-bond orientation (degrees from x, the extension axis)")

@@ -357,7 +357,8 @@ def _rates(scene: Scene, duration: float) -> tuple[float, float]:
 
 TITLES = {
     "layer-extension": "competent layer in a weak matrix, layer-parallel extension (pure shear)",
-    "layer-compression": "competent layer in a weak matrix, layer-parallel compression (pure shear)",
+    "layer-compression": "competent layer in a weak matrix, layer-parallel compression "
+                         "(pure shear)",
     "polycrystal": "polycrystal under pure shear (x extended, y shortened)",
     "expanding": "expanding grains in a polycrystal, walls held",
 }
@@ -371,6 +372,8 @@ def deck_text(scene: Scene, model: SceneModel | None = None,
     b, d = scene.bond, scene.d
     fb = b.Kn * b.Xb
     qs = scene.mode == "quasistatic"
+    # fix adapt changes radii during a run: only with a dynamic radius (sphere 1)
+    style = "sphere 1" if scene.kind == "expanding" and not qs else "sphere"
     head = f"""# Mike/Elle scene: {TITLES[scene.kind]}
 # {scene.n} particles ({scene.n_x} per row, {scene.rows} rows), {scene.mode} loading.
 # Written by bonded_lattice.scenes; run: lmp -in <this file> (or mpirun -np 2 lmp -in ...)
@@ -380,14 +383,15 @@ def deck_text(scene: Scene, model: SceneModel | None = None,
 units           si
 dimension       2
 boundary        f f p
-atom_style      {"sphere 1  # radii change (fix adapt)" if scene.kind == "expanding" and not qs else "sphere"}
+atom_style      {style}
 newton          on
 # grain id and stiffness factor per particle (the data file's Grains section)
 fix             grains all property/atom i_grain d_stiffness ghost yes
 read_data       {data_file} fix grains NULL Grains
 
 # bond stiffness: mean of the two particles' factors; strength uniform in
-# [{scene.strength_min:g}, {scene.strength_max:g}) x {scene.boundary_factor:g} across grain boundaries
+# [{scene.strength_min:g}, {scene.strength_max:g}),
+# x {scene.boundary_factor:g} across grain boundaries
 pair_style      lattice/bond {scene.pair_options().pair_style_args()}
 {b.pair_coeff()}
 neighbor        {0.1 * d:.6g} bin
