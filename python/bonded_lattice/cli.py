@@ -7,6 +7,7 @@
     bonded-lattice run --rock quartz --dim 2 --test compression --n 30 --np 2 --out run2d
     bonded-lattice calibrate --rock quartz --dim 2 --n 15 --out cal2d
     bonded-lattice validate [--slow]      # rewrites docs/validation.md
+    bonded-lattice scene polycrystal --n 40 --steps 20 --run --np 1 --out poly
 """
 
 from __future__ import annotations
@@ -138,6 +139,56 @@ def cmd_validate(args: argparse.Namespace) -> int:
     doc = validate(args.out, args.doc, np_=args.np, slow=args.slow, reuse=args.reuse,
                    progress=not args.quiet)
     print(f"wrote {doc}")
+    return 0
+
+
+def _scene(args: argparse.Namespace):
+    from .conversion import BondParameters
+    from .scenes import Scene, central_spring_bond
+
+    if args.bond:
+        kn, xb = args.bond
+        bond = BondParameters(kn, 0.0, xb, 1.0, 0.0)
+    else:
+        rock = _rock(args)
+        bond = central_spring_bond(rock.E, rock.Tu, args.d)
+    return Scene(args.kind, n_x=args.n, n_y=args.ny, d=args.d, bond=bond,
+                 layer_thickness=args.layer_thickness, layer_contrast=args.contrast,
+                 n_grains=args.grains, stiffness_sd=args.stiffness_sd,
+                 strength_min=args.strength[0], strength_max=args.strength[1],
+                 boundary_strength=args.boundary_strength, seed=args.grain_seed,
+                 n_expanding=args.expanding, mode=args.mode, strain_step=args.strain_step,
+                 n_steps=args.steps, ftol=args.ftol, crossings=args.crossings,
+                 damping=args.damping, output_every=args.output_every,
+                 bond_dumps=args.bond_dumps)
+
+
+def cmd_scene(args: argparse.Namespace) -> int:
+    from .scenes import expected_memory, run_scene, write_scene
+
+    scene = _scene(args)
+    out = Path(args.out)
+    if not args.run:
+        info = write_scene(scene, out)
+        print(f"wrote {info['data']} ({info['particles']} particles, "
+              f"{info['data_bytes'] / 1e6:.3g} MB) and {info['deck']}")
+        if scene.mode == "dynamic":
+            print(f"{scene.dynamic_steps()} time steps of {scene.dt():.4g} s")
+        print(f"expected memory of the run: {info['memory_bytes'] / 1e6:.0f} MB on 1 rank, "
+              f"{expected_memory(scene.n, 2) / 1e6:.0f} MB on 2")
+        if info["expanding"]:
+            print(f"expanding grains: {info['expanding']}")
+        print(f"run it with: cd {out} && mpirun -np 2 lmp -in {Path(info['deck']).name}")
+        return 0
+    summary = run_scene(scene, out, np_=args.np, progress=not args.quiet)
+    o = summary["orientation"]
+    print(f"{summary['kind']} ({summary['mode']}, {summary['particles']} particles): "
+          f"{summary['broken']} broken bonds ({summary['broken_tension']} tension, "
+          f"{summary['broken_shear']} shear) at strain {summary['strain']:.4g}; peak "
+          f"stress {summary['peak_stress'] / 1e6:.4g} MPa; mean "
+          f"broken-bond orientation {o['mean']:.3g} deg from x; {summary['steps']} steps or "
+          f"iterations; {summary['wall_time_s']} s")
+    print(f"wrote {out}/summary.json, broken_bonds.png, stress_strain.png")
     return 0
 
 
@@ -309,6 +360,49 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--reuse", action="store_true",
                    help="keep runs whose summary.json exists (rewrite the doc only)")
     p.set_defaults(func=cmd_validate)
+
+    p = sub.add_parser("scene", help="a Mike/Elle scene: competent layer, polycrystal or "
+                       "expanding grains in a box of frictionless walls")
+    p.add_argument("kind", choices=["layer-extension", "layer-compression", "polycrystal",
+                                    "expanding"])
+    p.add_argument("--mode", choices=["quasistatic", "dynamic"], default="quasistatic")
+    p.add_argument("--n", type=int, default=40, help="particles per row (default 40)")
+    p.add_argument("--ny", type=int, default=0, help="rows (default: a square box)")
+    p.add_argument("--d", type=float, default=1e-3, help="particle diameter, m")
+    p.add_argument("--rock", default="quartz", help="rock whose E and Tu give Kn and Xb")
+    p.add_argument("--bond", type=float, nargs=2, metavar=("Kn", "Xb"),
+                   help="central-spring parameters directly (Ks = mu_p = 0)")
+    p.add_argument("--steps", type=int, default=30, help="strain steps (default 30)")
+    p.add_argument("--strain-step", type=float, default=2e-5,
+                   help="strain (or grain growth) per step (default 2e-5)")
+    p.add_argument("--ftol", type=float, default=1e-3,
+                   help="relaxation tolerance, fraction of Kn Xb (default 1e-3)")
+    p.add_argument("--crossings", type=float, default=50.0,
+                   help="dynamic: P-wave crossings of the box over the whole loading")
+    p.add_argument("--damping", type=float, default=1.0,
+                   help="dynamic: factor on the papers' damping sqrt(8 m Kn)/N")
+    p.add_argument("--layer-thickness", type=float, default=0.2,
+                   help="layer thickness, fraction of the box height (default 0.2)")
+    p.add_argument("--contrast", type=float, default=3.0,
+                   help="layer stiffness / matrix stiffness (default 3)")
+    p.add_argument("--grains", type=int, default=12, help="Voronoi grains (default 12)")
+    p.add_argument("--stiffness-sd", type=float, default=0.15,
+                   help="sd of the grains' stiffness factors, mean 1 (default 0.15)")
+    p.add_argument("--strength", type=float, nargs=2, default=[0.8, 1.2],
+                   metavar=("MIN", "MAX"), help="bond strength factors, uniform (0.8 1.2)")
+    p.add_argument("--boundary-strength", type=float, default=None,
+                   help="strength factor across grain boundaries (default 0.5; 1 for the "
+                   "layer's interfaces)")
+    p.add_argument("--grain-seed", type=int, default=1, help="seed of grains and strengths")
+    p.add_argument("--expanding", type=int, default=2, help="growing grains (default 2)")
+    p.add_argument("--output-every", type=int, default=1,
+                   help="strain steps between lines of scene.dat (dynamic; default 1)")
+    p.add_argument("--bond-dumps", type=int, default=0,
+                   help="dump the bond records every this many strain steps (0: only at the end)")
+    p.add_argument("--run", action="store_true", help="run it, measure and plot")
+    p.add_argument("--out", default="scene", help="output folder")
+    _running(p)
+    p.set_defaults(func=cmd_scene)
 
     p = sub.add_parser("info", help="package version and plugin location")
     p.set_defaults(func=cmd_info)

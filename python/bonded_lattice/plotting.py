@@ -174,3 +174,121 @@ def energy_png(path: str | Path, thermo: dict, title: str = "") -> None:
     fig.tight_layout()
     fig.savefig(path, dpi=130)
     plt.close(fig)
+
+
+def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
+                    records: np.ndarray, d: float, broken_at: dict | None = None,
+                    step_label: str = "strain step", title: str = "",
+                    highlight: np.ndarray | None = None) -> int:
+    """Map of the broken bonds of a scene; returns their number.
+
+    positions: (n, 2+) initial particle centres (ids 1..n); grain: their grain
+    ids; records: rows (id1, id2, state, ...) of ``compute lattice/bond/local``
+    (all records of the final state).  Each broken bond is drawn as a crack
+    segment of length d across the bond at its midpoint: black for tension,
+    red for shear, or coloured by the step at which it broke (``broken_at``:
+    {(id1, id2): step}).  Grain (or layer) boundaries are drawn faintly as the
+    midpoints of the bonds that join two grains; ``highlight`` marks particles
+    (e.g. the growing grains) in light blue.
+    """
+    from matplotlib.collections import LineCollection
+
+    plt = _pyplot()
+    p = np.asarray(positions, dtype=float)[:, :2] * 1e3
+    rec = np.asarray(records, dtype=float).reshape(-1, records.shape[1] if len(records) else 3)
+    i = rec[:, 0].astype(np.int64) - 1
+    j = rec[:, 1].astype(np.int64) - 1
+    state = rec[:, 2].astype(int)
+    fig, ax = plt.subplots(figsize=(6.4, 6.4 * (np.ptp(p[:, 1]) + 1) / (np.ptp(p[:, 0]) + 1) + 0.6))
+    if highlight is not None and np.any(highlight):
+        h = np.asarray(highlight, dtype=bool)
+        ax.scatter(p[h, 0], p[h, 1], s=2, c="#9ecae1", lw=0, zorder=0)
+    across = (grain[i] != grain[j]) & (state != 3)
+    mid = 0.5 * (p[i] + p[j])
+    ax.scatter(mid[across, 0], mid[across, 1], s=1.0, c="0.6", lw=0, zorder=1)
+    broken = (state == 1) | (state == 2)
+    u = p[j[broken]] - p[i[broken]]
+    u /= np.linalg.norm(u, axis=1, keepdims=True)
+    normal = np.stack([-u[:, 1], u[:, 0]], axis=1) * 0.5 * d * 1e3
+    m = mid[broken]
+    segments = np.stack([m - normal, m + normal], axis=1)
+    if broken_at:
+        steps = np.array([broken_at.get((int(a) + 1, int(b) + 1), np.nan)
+                          for a, b in zip(i[broken], j[broken])], dtype=float)
+        lc = LineCollection(segments, array=np.nan_to_num(steps, nan=np.nanmax(steps)
+                                                          if np.isfinite(steps).any() else 0),
+                            cmap="viridis", linewidths=1.2, zorder=2)
+        ax.add_collection(lc)
+        fig.colorbar(lc, ax=ax, label=f"broken by {step_label}", shrink=0.8)
+    else:
+        colours = np.where(state[broken] == 2, "tab:red", "k")
+        ax.add_collection(LineCollection(segments, colors=colours, linewidths=1.2, zorder=2))
+        ax.plot([], [], "k-", label=f"tension ({int((state == 1).sum())})")
+        ax.plot([], [], "-", color="tab:red", label=f"shear ({int((state == 2).sum())})")
+        ax.legend(loc="upper right", fontsize=7)
+    ax.set_xlim(p[:, 0].min() - 1e3 * d, p[:, 0].max() + 1e3 * d)
+    ax.set_ylim(p[:, 1].min() - 1e3 * d, p[:, 1].max() + 1e3 * d)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.set_title(title, fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+    return int(broken.sum())
+
+
+def scene_stress_png(path: str | Path, curves: list[dict], xlabel: str = "strain e_xx (1e-3)",
+                     title: str = "") -> None:
+    """Wall stresses against strain, and broken bonds, for one or more runs.
+
+    curves: dicts with ``label``, ``strain`` (x values), ``sxx``, ``syy`` (Pa) and
+    ``broken`` (counts).  Left: sigma_xx (solid) and sigma_yy (dashed); right:
+    broken bonds.
+    """
+    plt = _pyplot()
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4))
+    for k, c in enumerate(curves):
+        colour = f"C{k}"
+        x = np.asarray(c["strain"]) * 1e3
+        ax.plot(x, np.asarray(c["sxx"]) / 1e6, "-", color=colour, lw=1.3,
+                label=f"{c['label']}: sigma_xx")
+        ax.plot(x, np.asarray(c["syy"]) / 1e6, "--", color=colour, lw=1.0,
+                label=f"{c['label']}: sigma_yy")
+        bx.plot(x, c["broken"], "-", color=colour, lw=1.3, label=c["label"])
+    ax.axhline(0, color="0.6", lw=0.6)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("wall stress, tension positive (MPa)")
+    ax.legend(fontsize=7)
+    bx.set_xlabel(xlabel)
+    bx.set_ylabel("broken bonds")
+    bx.legend(fontsize=7)
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+
+
+def angle_histogram_png(path: str | Path, series: list[tuple[str, np.ndarray]],
+                        title: str = "") -> None:
+    """Histograms of broken-bond orientations (degrees from x) for several runs."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(6, 3.8))
+    bins = np.arange(-15, 181, 30)
+    width = 30.0 / (len(series) + 1)
+    for k, (label, a) in enumerate(series):
+        a = np.asarray(a, dtype=float)
+        a = np.where(a >= 165, a - 180, a)
+        h, _ = np.histogram(a, bins=bins)
+        frac = h / max(1, len(a))
+        # the runs side by side within each 30-degree bin
+        ax.bar(bins[:-1] + width * (k + 0.5), frac, width=width, label=f"{label} ({len(a)})",
+               align="edge")
+    ax.set_xticks([0, 30, 60, 90, 120, 150])
+    ax.set_xlabel("broken-bond orientation (degrees from x, the extension axis)")
+    ax.set_ylabel("fraction of broken bonds")
+    ax.legend(fontsize=7)
+    ax.set_title(title, fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
