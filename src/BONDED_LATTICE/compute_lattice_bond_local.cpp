@@ -98,7 +98,8 @@ void ComputeLatticeBondLocal::compute_local()
   int row = 0;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    const LatticeBondRecord *r = store->records(i);
+    const tagint *pt = store->partners(i);
+    const unsigned char *st = store->states(i);
     for (int s = 0; s < store->nrec[i]; s++, row++) {
       const int j = idx[(bigint) i * stride + s];
       const int jj = (j >= 0) ? j : i;
@@ -109,10 +110,9 @@ void ComputeLatticeBondLocal::compute_local()
         dist = sqrt(dx * dx + dy * dy + dz * dz);
         const double xn = dist - (radius[i] + radius[j]);
         // an open broken bond or contact carries no force
-        if (r[s].state == LB_INTACT || xn < 0.0) {
+        if (st[s] == LB_INTACT || xn < 0.0) {
           fn = p.kn * xn;
-          const double *sh = r[s].shear;
-          fs = p.ks * sqrt(sh[0] * sh[0] + sh[1] * sh[1] + sh[2] * sh[2]);
+          fs = p.ks * sqrt(store->spring_squared(i, s));
         }
         int mode;
         ratio = pair->break_ratio(i, s, mode);
@@ -121,8 +121,8 @@ void ComputeLatticeBondLocal::compute_local()
         double value = 0.0;
         switch (values[v]) {
           case ID1: value = (double) tag[i]; break;
-          case ID2: value = (double) r[s].partner; break;
-          case STATE: value = r[s].state; break;
+          case ID2: value = (double) pt[s]; break;
+          case STATE: value = st[s]; break;
           case DIST: value = dist; break;
           case X: case Y: case Z: {
             const int k = values[v] - X;

@@ -87,9 +87,9 @@ void ComputeLatticeBonds::compute_vector()
     const int stride = pair->partner_index_stride();
     for (int i = 0; i < atom->nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
-      const LatticeBondRecord *r = store->records(i);
+      const unsigned char *st = store->states(i);
       for (int s = 0; s < store->nrec[i]; s++) {
-        const int state = r[s].state;
+        const int state = st[s];
         if (state == LB_INTACT) {
           local[0] += 1.0;
           continue;
@@ -127,9 +127,9 @@ void ComputeLatticeBonds::compute_peratom()
   if (store && idx) {
     const int stride = pair->partner_index_stride();
     for (int i = 0; i < atom->nlocal; i++) {
-      const LatticeBondRecord *r = store->records(i);
+      const unsigned char *st = store->states(i);
       for (int s = 0; s < store->nrec[i]; s++) {
-        if (r[s].state != peratom_state) continue;
+        if (st[s] != peratom_state) continue;
         intact_per_atom[i] += 1.0;
         const int j = idx[(bigint) i * stride + s];
         if (j >= 0) intact_per_atom[j] += 1.0;

@@ -33,7 +33,8 @@ static constexpr int INITIAL_CAPACITY = 4;
 static constexpr int CAPACITY_STEP = 2;    // small steps: memory follows need
 
 FixLatticeBondStore::FixLatticeBondStore(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), nrec(nullptr), rec(nullptr), xlast(nullptr), disp(nullptr),
+    Fix(lmp, narg, arg), nrec(nullptr), ncomp(3), spring(nullptr), partner(nullptr),
+    state(nullptr), xlast(nullptr), disp(nullptr),
     bonds_created(0), shear_layout(SHEAR_VECTOR), nmax_store(0)
 {
   if (narg != 4) error->all(FLERR, "Illegal fix {} command: expected one argument (maxslot)", style);
@@ -59,7 +60,9 @@ FixLatticeBondStore::~FixLatticeBondStore()
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(nrec);
-  memory->sfree(rec);
+  memory->sfree(spring);
+  memory->sfree(partner);
+  memory->sfree(state);
   memory->destroy(xlast);
   memory->destroy(disp);
 }
@@ -73,7 +76,7 @@ int FixLatticeBondStore::setmask()
 
 /* ---------------------------------------------------------------------- */
 
-LatticeBondRecord *FixLatticeBondStore::add_record(int i)
+int FixLatticeBondStore::add_record(int i, tagint partner_tag, int record_state)
 {
   if (nrec[i] >= capacity) {
     if (nrec[i] >= maxslot)
@@ -83,18 +86,24 @@ LatticeBondRecord *FixLatticeBondStore::add_record(int i)
                  atom->tag[i], maxslot);
     set_capacity(std::min(maxslot, capacity + CAPACITY_STEP));
   }
-  LatticeBondRecord *r = records(i) + nrec[i]++;
-  std::memset(r, 0, sizeof(LatticeBondRecord));
-  return r;
+  const int s = nrec[i]++;
+  double *sp = springs(i) + s * ncomp;
+  for (int k = 0; k < ncomp; k++) sp[k] = 0.0;
+  partners(i)[s] = partner_tag;
+  states(i)[s] = (unsigned char) record_state;
+  return s;
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixLatticeBondStore::remove_record(int i, int slot)
 {
-  LatticeBondRecord *r = records(i);
   const int last = --nrec[i];
-  if (slot != last) r[slot] = r[last];
+  if (slot == last) return;
+  double *sp = springs(i);
+  for (int k = 0; k < ncomp; k++) sp[slot * ncomp + k] = sp[last * ncomp + k];
+  partners(i)[slot] = partners(i)[last];
+  states(i)[slot] = states(i)[last];
 }
 
 /* ----------------------------------------------------------------------
@@ -103,15 +112,50 @@ void FixLatticeBondStore::remove_record(int i, int slot)
 
 void FixLatticeBondStore::set_capacity(int n)
 {
-  if (n == capacity) return;
-  auto *fresh = (LatticeBondRecord *) memory->smalloc(
-      (bigint) nmax_store * n * sizeof(LatticeBondRecord), "lattice/bond/store:rec");
+  if (n != capacity) relayout(n, ncomp);
+}
+
+/* ----------------------------------------------------------------------
+   the local atoms' records copied into arrays with room for n records of
+   nc spring components per atom: components beyond the old ones are zero,
+   fewer keep the first ones
+------------------------------------------------------------------------- */
+
+void FixLatticeBondStore::relayout(int n, int nc)
+{
+  const bigint nslots = (bigint) nmax_store * n;
+  auto *sp = (double *) memory->smalloc(nslots * nc * sizeof(double), "lattice/bond/store:spring");
+  auto *pt = (tagint *) memory->smalloc(nslots * sizeof(tagint), "lattice/bond/store:partner");
+  auto *st = (unsigned char *) memory->smalloc(nslots, "lattice/bond/store:state");
+  const int keep = std::min(nc, ncomp);
   const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++)
-    if (nrec[i]) std::memcpy(fresh + (bigint) i * n, records(i), nrec[i] * sizeof(LatticeBondRecord));
-  memory->sfree(rec);
-  rec = fresh;
+  for (int i = 0; i < nlocal; i++) {
+    const int nr = nrec[i];
+    if (!nr) continue;
+    const double *from = springs(i);
+    double *to = sp + (bigint) i * n * nc;
+    for (int s = 0; s < nr; s++)
+      for (int k = 0; k < nc; k++) to[s * nc + k] = (k < keep) ? from[s * ncomp + k] : 0.0;
+    std::memcpy(pt + (bigint) i * n, partners(i), nr * sizeof(tagint));
+    std::memcpy(st + (bigint) i * n, states(i), nr);
+  }
+  memory->sfree(spring);
+  memory->sfree(partner);
+  memory->sfree(state);
+  spring = sp;
+  partner = pt;
+  state = st;
   capacity = n;
+  ncomp = nc;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeBondStore::set_shear_layout(int layout)
+{
+  shear_layout = layout;
+  const int nc = (layout == SHEAR_PLANAR) ? 1 : 3;
+  if (nc != ncomp) relayout(capacity, nc);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -233,8 +277,12 @@ void FixLatticeBondStore::grow_arrays(int nmax)
   for (int i = nmax_store; i < nmax; i++) nrec[i] = 0;
   memory->grow(xlast, nmax, 3, "lattice/bond/store:xlast");
   memory->grow(disp, nmax, 3, "lattice/bond/store:disp");
-  rec = (LatticeBondRecord *) memory->srealloc(rec, (bigint) nmax * capacity * sizeof(LatticeBondRecord),
-                                               "lattice/bond/store:rec");
+  const bigint nslots = (bigint) nmax * capacity;
+  spring = (double *) memory->srealloc(spring, nslots * ncomp * sizeof(double),
+                                       "lattice/bond/store:spring");
+  partner = (tagint *) memory->srealloc(partner, nslots * sizeof(tagint),
+                                        "lattice/bond/store:partner");
+  state = (unsigned char *) memory->srealloc(state, nslots, "lattice/bond/store:state");
   nmax_store = nmax;
 }
 
@@ -243,7 +291,11 @@ void FixLatticeBondStore::grow_arrays(int nmax)
 void FixLatticeBondStore::copy_arrays(int i, int j, int /*delflag*/)
 {
   nrec[j] = nrec[i];
-  if (nrec[i]) std::memcpy(records(j), records(i), nrec[i] * sizeof(LatticeBondRecord));
+  if (nrec[i]) {
+    std::memcpy(springs(j), springs(i), nrec[i] * ncomp * sizeof(double));
+    std::memcpy(partners(j), partners(i), nrec[i] * sizeof(tagint));
+    std::memcpy(states(j), states(i), nrec[i]);
+  }
   for (int k = 0; k < 3; k++) {
     xlast[j][k] = xlast[i][k];
     disp[j][k] = disp[i][k];
@@ -265,6 +317,8 @@ void FixLatticeBondStore::set_arrays(int i)
 
 /* ----------------------------------------------------------------------
    one atom as doubles: record count, last position, then 5 values per record
+   (partner, state, three spring components: a planar spring is written as
+   (s, 0, 0), so that the layout does not depend on shear_layout)
 ------------------------------------------------------------------------- */
 
 int FixLatticeBondStore::pack_atom(int i, double *buf) const
@@ -272,11 +326,13 @@ int FixLatticeBondStore::pack_atom(int i, double *buf) const
   int m = 0;
   buf[m++] = ubuf(nrec[i]).d;
   for (int k = 0; k < 3; k++) buf[m++] = xlast[i][k];
-  const LatticeBondRecord *r = records(i);
+  const double *sp = springs(i);
+  const tagint *pt = partners(i);
+  const unsigned char *st = states(i);
   for (int s = 0; s < nrec[i]; s++) {
-    buf[m++] = ubuf(r[s].partner).d;
-    buf[m++] = ubuf(r[s].state).d;
-    for (int k = 0; k < 3; k++) buf[m++] = r[s].shear[k];
+    buf[m++] = ubuf(pt[s]).d;
+    buf[m++] = ubuf((int) st[s]).d;
+    for (int k = 0; k < 3; k++) buf[m++] = (k < ncomp) ? sp[s * ncomp + k] : 0.0;
   }
   return m;
 }
@@ -298,11 +354,15 @@ int FixLatticeBondStore::unpack_atom(int i, const double *buf)
     xlast[i][k] = buf[m++];
     disp[i][k] = 0.0;
   }
-  LatticeBondRecord *r = records(i);
+  double *sp = springs(i);
+  tagint *pt = partners(i);
+  unsigned char *st = states(i);
   for (int s = 0; s < n; s++) {
-    r[s].partner = (tagint) ubuf(buf[m++]).i;
-    r[s].state = (int) ubuf(buf[m++]).i;
-    for (int k = 0; k < 3; k++) r[s].shear[k] = buf[m++];
+    pt[s] = (tagint) ubuf(buf[m++]).i;
+    st[s] = (unsigned char) ubuf(buf[m++]).i;
+    // a planar spring keeps the first value (the others are 0)
+    for (int k = 0; k < ncomp; k++) sp[s * ncomp + k] = buf[m + k];
+    m += 3;
   }
   return m;
 }
@@ -387,13 +447,13 @@ void FixLatticeBondStore::restart(char *buf)
                "the model from its data file, or write the restart again with the version that "
                "made it", format < 2 ? 1 : format, RESTART_FORMAT);
   bonds_created = static_cast<int>(list[1]);
-  shear_layout = (format == 2) ? SHEAR_VECTOR : static_cast<int>(list[3]);
+  set_shear_layout((format == 2) ? SHEAR_VECTOR : static_cast<int>(list[3]));
 }
 
 /* ---------------------------------------------------------------------- */
 
 double FixLatticeBondStore::memory_usage()
 {
-  return (double) nmax_store *
-      (sizeof(int) + 6 * sizeof(double) + (double) capacity * sizeof(LatticeBondRecord));
+  const double per_record = ncomp * sizeof(double) + sizeof(tagint) + sizeof(unsigned char);
+  return (double) nmax_store * (sizeof(int) + 6 * sizeof(double) + capacity * per_record);
 }

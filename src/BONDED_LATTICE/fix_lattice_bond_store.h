@@ -21,11 +21,11 @@ namespace LAMMPS_NS {
 // updates it, so ranks can never disagree about whether a bond broke.  The
 // step's relative displacement comes from the two particles' displacements
 // (FixLatticeBondStore::disp), so a record keeps no old separation.
-struct LatticeBondRecord {
-  double shear[3];      // shear-spring displacement; force on the owner is -Ks*shear
-  tagint partner;       // tag of the higher-tag particle
-  int state;            // one of LatticeBondState
-};
+//
+// A record is one entry in each of three arrays (FixLatticeBondStore): its
+// shear spring (ncomp doubles, force on the owner -Ks*spring), the partner's
+// tag and its state.  Separate arrays let the force loop stream springs and
+// states only; the partner tag is read after reneighbouring.
 
 enum LatticeBondState { LB_INTACT = 0, LB_BROKEN_TENSION = 1, LB_BROKEN_SHEAR = 2, LB_CONTACT = 3 };
 
@@ -48,10 +48,25 @@ class FixLatticeBondStore : public Fix {
   void restart(char *) override;
   double memory_usage() override;
 
-  // records of atom i are rec[i*capacity .. i*capacity + nrec[i] - 1]
-  LatticeBondRecord *records(int i) const { return rec + (bigint) i * capacity; }
-  LatticeBondRecord *add_record(int i);    // grows the capacity; error beyond maxslot
+  // record s (0 <= s < nrec[i]) of atom i: springs(i)[s*ncomp .. s*ncomp + ncomp-1],
+  // partners(i)[s], states(i)[s]; each atom has room for `capacity` records
+  double *springs(int i) const { return spring + (bigint) i * capacity * ncomp; }
+  tagint *partners(int i) const { return partner + (bigint) i * capacity; }
+  unsigned char *states(int i) const { return state + (bigint) i * capacity; }
+  // squared length of the spring of record s of atom i (either layout)
+  double spring_squared(int i, int s) const
+  {
+    const double *sh = springs(i) + s * ncomp;
+    double s2 = 0.0;
+    for (int k = 0; k < ncomp; k++) s2 += sh[k] * sh[k];
+    return s2;
+  }
+  // a new record with a zero spring, its slot; grows the capacity, error beyond maxslot
+  int add_record(int i, tagint partner_tag, int record_state);
   void remove_record(int i, int slot);     // swap-with-last removal
+  // change the shear layout; records keep spring component 0 (the signed
+  // length when turning vectors into planar springs, see shear_layout)
+  void set_shear_layout(int layout);
   void set_maxslot(int n);                 // new limit; error if an atom holds more
   void fit_capacity(int n);                // capacity = max(n, every atom's count) <= maxslot
   int local_max_records() const;
@@ -61,24 +76,29 @@ class FixLatticeBondStore : public Fix {
   int maxslot;           // most records an atom may hold (pair_style keyword)
   int capacity;          // records stored per atom now: grows on demand up to maxslot
   int *nrec;             // number of records per atom
-  LatticeBondRecord *rec;
+  int ncomp;             // doubles per spring: 1 (SHEAR_PLANAR) or 3 (SHEAR_VECTOR)
+  double *spring;        // shear springs, ncomp * capacity per atom
+  tagint *partner;       // tag of the higher-tag particle, capacity per atom
+  unsigned char *state;  // one of LatticeBondState, capacity per atom
   double **xlast;        // position at the last force evaluation (local atoms)
   double **disp;         // displacement since then (local atoms; ghosts by forward comm)
   int bonds_created;     // 1 once the initial bonds exist; never reset (survives restart)
   // how the records hold the shear spring: SHEAR_VECTOR, a 3-vector in the
-  // tangent plane (3D; also 2D records read from a bond file or an older
+  // tangent plane, ncomp = 3 (3D; also 2D records read from a bond file or an older
   // restart file, until the pair style turns them into scalars), or
-  // SHEAR_PLANAR, the signed length along t = z x n in shear[0] (2D)
+  // SHEAR_PLANAR, the signed length along t = z x n, ncomp = 1 (2D).
+  // Read only: change it with set_shear_layout()
   enum { SHEAR_VECTOR = 0, SHEAR_PLANAR = 1 };
   int shear_layout;
 
  private:
   int nmax_store;
-  static constexpr int RECORD_DOUBLES = 5;    // packed size of one record
+  static constexpr int RECORD_DOUBLES = 5;    // packed size of one record (always 3 shear values)
   static constexpr int ATOM_DOUBLES = 4;      // count + xlast
   // 1: records with the old separation; 2: no shear layout (vectors)
   static constexpr int RESTART_FORMAT = 3;
   void set_capacity(int n);
+  void relayout(int new_capacity, int new_ncomp);
   template <int DIM> int orthogonal_steps(double limit);
   int first_beyond(double limit, int dim) const;
   int pack_atom(int, double *) const;

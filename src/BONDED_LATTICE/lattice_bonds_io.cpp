@@ -131,11 +131,12 @@ void WriteLatticeBonds::command(int narg, char **arg)
   const tagint *tag = atom->tag;
   bigint unknown = 0;
   for (int i = 0; i < atom->nlocal; i++) {
-    const LatticeBondRecord *r = store->records(i);
+    const tagint *pt = store->partners(i);
+    const unsigned char *st = store->states(i);
     for (int s = 0; s < store->nrec[i]; s++) {
       double sh[3];
       if (!pair->shear_vector(i, s, sh)) unknown++;
-      mine.insert(mine.end(), {(double) tag[i], (double) r[s].partner, (double) r[s].state,
+      mine.insert(mine.end(), {(double) tag[i], (double) pt[s], (double) st[s],
                                sh[0], sh[1], sh[2]});
     }
   }
@@ -216,6 +217,8 @@ void ReadLatticeBonds::command(int narg, char **arg)
   values.resize(n);
   MPI_Bcast(values.data(), (int) n, MPI_DOUBLE, 0, world);
 
+  // the file holds vectors; a 2D run turns them into signed lengths
+  store->set_shear_layout(FixLatticeBondStore::SHEAR_VECTOR);
   // each record goes to the rank that owns its owner atom; both atoms must exist
   const bigint nrecords = n / VALUES;
   bigint placed = 0, missing_partner = 0;
@@ -230,10 +233,9 @@ void ReadLatticeBonds::command(int narg, char **arg)
       if (!missing_partner) first_missing = (tagint) v[1];
       missing_partner++;
     }
-    LatticeBondRecord *rec = store->add_record(i);
-    rec->partner = (tagint) v[1];
-    rec->state = (int) v[2];
-    for (int c = 0; c < 3; c++) rec->shear[c] = v[3 + c];
+    const int s = store->add_record(i, (tagint) v[1], (int) v[2]);
+    double *sh = store->springs(i) + 3 * s;
+    for (int c = 0; c < 3; c++) sh[c] = v[3 + c];
     placed++;
   }
   bigint placed_all = 0, missing_all = 0;
@@ -247,8 +249,6 @@ void ReadLatticeBonds::command(int narg, char **arg)
     error->all(FLERR, "read_lattice_bonds: {} records name a partner atom ID that does not exist "
                "(e.g. {}); the file does not belong to these atoms", missing_all, first_missing);
   store->bonds_created = 1;
-  // the file holds vectors; a 2D run turns them into signed lengths
-  store->shear_layout = FixLatticeBondStore::SHEAR_VECTOR;
   if (comm->me == 0)
     utils::logmesg(lmp, "read_lattice_bonds: {} records from {} (no bonds are created from "
                    "positions)\n", nrecords, arg[0]);

@@ -111,9 +111,9 @@ void LatticeQuasistatic::command(int narg, char **arg)
     } else {
       const int i = atom->map(owner);
       if (i >= 0 && i < atom->nlocal) {
-        const LatticeBondRecord *r = pair->store()->records(i);
+        const tagint *pt = pair->store()->partners(i);
         for (int s = 0; s < pair->store()->nrec[i]; s++)
-          if (r[s].partner == partner) pair->break_record(i, s, mode);
+          if (pt[s] == partner) pair->break_record(i, s, mode);
       }
       broken++;
       (mode == LB_BROKEN_TENSION ? tension : shear)++;
@@ -193,16 +193,16 @@ double LatticeQuasistatic::worst_bond(tagint &owner, tagint &partner, int &mode)
   tagint best_owner = MAXTAGINT, best_partner = MAXTAGINT;
   int best_mode = 0;
   for (int i = 0; i < atom->nlocal; i++) {
-    const LatticeBondRecord *r = store->records(i);
+    const tagint *pt = store->partners(i);
     for (int s = 0; s < store->nrec[i]; s++) {
       int m;
       const double ratio = pair->break_ratio(i, s, m);
       if (m == LB_INTACT) continue;
-      const bool lower = tag[i] < best_owner || (tag[i] == best_owner && r[s].partner < best_partner);
+      const bool lower = tag[i] < best_owner || (tag[i] == best_owner && pt[s] < best_partner);
       if (ratio > best || (ratio == best && lower)) {
         best = ratio;
         best_owner = tag[i];
-        best_partner = r[s].partner;
+        best_partner = pt[s];
         best_mode = m;
       }
     }

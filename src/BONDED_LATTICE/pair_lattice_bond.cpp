@@ -2,8 +2,8 @@
    BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
 
    Design (see docs/design.md):
-   - Every bond or contact is one LatticeBondRecord stored on the particle
-     with the lower tag, kept by the companion fix LATTICE/BOND/STORE that
+   - Every bond or contact is one record (spring, partner tag, state) stored
+     on the particle with the lower tag, kept by the companion fix LATTICE/BOND/STORE that
      migrates it with the atom.  The owner's rank computes the force, applies
      it to both particles and relies on reverse communication (newton on).
    - Bonds are created once, at the first run, from the full neighbour list.
@@ -443,16 +443,14 @@ PairLatticeBond::BondParams PairLatticeBond::bond_params(int i, int j) const
 double PairLatticeBond::break_ratio(int i, int s, int &mode) const
 {
   mode = LB_INTACT;
-  const LatticeBondRecord &b = fix_store->records(i)[s];
   const int j = partner_idx ? partner_idx[(bigint) i * partner_stride + s] : -1;
-  if (b.state != LB_INTACT || j < 0) return 0.0;
+  if (fix_store->states(i)[s] != LB_INTACT || j < 0) return 0.0;
   double **x = atom->x;
   const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
   const double xn = sqrt(dx * dx + dy * dy + dz * dz) - (atom->radius[i] + atom->radius[j]);
   const BondParams p = bond_params(i, j);
   const double fn = p.kn * xn;
-  const double *sh = b.shear;
-  const double fs = p.ks * sqrt(sh[0] * sh[0] + sh[1] * sh[1] + sh[2] * sh[2]);
+  const double fs = p.ks * sqrt(fix_store->spring_squared(i, s));
   const double tension = xn / p.xb;
   const double load = fs + p.mu_p * fn;
   const double shear = (p.fs0 > 0.0) ? load / p.fs0 : (load > 0.0 ? BIG : 0.0);
@@ -478,8 +476,8 @@ bool PairLatticeBond::has_shear_springs() const
 
 void PairLatticeBond::break_record(int i, int s, int mode)
 {
-  LatticeBondRecord &b = fix_store->records(i)[s];
-  if (b.state == LB_INTACT) b.state = mode;
+  unsigned char &st = fix_store->states(i)[s];
+  if (st == LB_INTACT) st = (unsigned char) mode;
 }
 
 /* ----------------------------------------------------------------------
@@ -591,9 +589,9 @@ template <typename Visit> void PairLatticeBond::for_each_owned_pair(Visit &&visi
 
 bool PairLatticeBond::has_record_with(int i, tagint partner) const
 {
-  const LatticeBondRecord *r = fix_store->records(i);
+  const tagint *pt = fix_store->partners(i);
   for (int s = 0; s < fix_store->nrec[i]; s++)
-    if (r[s].partner == partner) return true;
+    if (pt[s] == partner) return true;
   return false;
 }
 
@@ -627,9 +625,7 @@ void PairLatticeBond::create_bonds()
       }
       // in a small periodic box two images of one partner may be in range
       if (has_record_with(i, tag[j])) return;
-      LatticeBondRecord *rec = fix_store->add_record(i);
-      rec->partner = tag[j];
-      rec->state = LB_INTACT;
+      fix_store->add_record(i, tag[j], LB_INTACT);
       nbond_local++;
     });
     if (pass == 0) {
@@ -648,7 +644,7 @@ void PairLatticeBond::create_bonds()
   bigint nbond = 0;
   MPI_Allreduce(&nbond_local, &nbond, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   fix_store->bonds_created = 1;
-  if (domain->dimension == 2) fix_store->shear_layout = FixLatticeBondStore::SHEAR_PLANAR;
+  if (domain->dimension == 2) fix_store->set_shear_layout(FixLatticeBondStore::SHEAR_PLANAR);
   // the exact room: contacts add more when they need it
   fix_store->fit_capacity(fix_store->global_max_records());
   if (comm->me == 0)
@@ -689,36 +685,37 @@ void PairLatticeBond::refresh_partners()
   }
 
   for (int i = 0; i < nlocal; i++) {
-    LatticeBondRecord *r = fix_store->records(i);
+    const tagint *pt = fix_store->partners(i);
+    const unsigned char *st = fix_store->states(i);
     int *idx = partner_idx + (bigint) i * partner_stride;
     // walk downwards so that swap-with-last removal only moves visited records
     for (int s = fix_store->nrec[i] - 1; s >= 0; s--) {
-      int j = atom->map(r[s].partner);
+      int j = atom->map(pt[s]);
       if (j >= 0) j = domain->closest_image(i, j);
       // a stale map entry (deleted atom) must not pass for the partner
-      if (j >= 0 && tag[j] != r[s].partner) j = -1;
+      if (j >= 0 && tag[j] != pt[s]) j = -1;
       bool drop = false;
       if (j < 0) {
-        if (r[s].state == LB_INTACT)
+        if (st[s] == LB_INTACT)
           error->one(FLERR,
                      "pair_style lattice/bond: bond {}-{} lost its partner: atom {} is neither on "
                      "this rank nor a ghost. Either it was deleted or renumbered after the bonds "
                      "were made (delete_atoms, reset_atoms id), or the bond became longer than the "
                      "communication cutoff {} (increase neighbor skin or comm_modify cutoff)",
-                     tag[i], r[s].partner, r[s].partner, cutghost);
-        drop = (r[s].state == LB_CONTACT);
+                     tag[i], pt[s], pt[s], cutghost);
+        drop = (st[s] == LB_CONTACT);
       } else {
         const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
         const double rsq = delx * delx + dely * dely + delz * delz;
         const double touch = radius[i] + radius[j];
-        if (r[s].state == LB_INTACT && (rsq > cutghost_sq || j == i))
+        if (st[s] == LB_INTACT && (rsq > cutghost_sq || j == i))
           error->one(FLERR,
                      "pair_style lattice/bond: bond {}-{} is {} long, beyond the communication "
                      "cutoff {}. Either the intact bond stretched that far (raise neighbor skin "
                      "or comm_modify cutoff), or atoms were renumbered or moved after the bonds "
                      "were made (reset_atoms id, delete_atoms compress yes, set, displace_atoms)",
-                     tag[i], r[s].partner, sqrt(rsq), sqrt(cutghost_sq));
-        drop = (r[s].state == LB_CONTACT && rsq >= touch * touch);
+                     tag[i], pt[s], sqrt(rsq), sqrt(cutghost_sq));
+        drop = (st[s] == LB_CONTACT && rsq >= touch * touch);
       }
       if (drop) {
         const int last = fix_store->nrec[i] - 1;
@@ -776,11 +773,13 @@ void PairLatticeBond::cache_bond_factors(int i)
 void PairLatticeBond::planar_springs_from_vectors()
 {
   double **x = atom->x;
+  // the signed length goes to component 0; set_shear_layout keeps only it
+  const int nc = fix_store->ncomp;
   for (int i = 0; i < atom->nlocal; i++) {
-    LatticeBondRecord *r = fix_store->records(i);
+    double *sp = fix_store->springs(i);
     const int *idx = partner_idx + (bigint) i * partner_stride;
     for (int s = 0; s < fix_store->nrec[i]; s++) {
-      double *sh = r[s].shear;
+      double *sh = sp + s * nc;
       const double len = sqrt(sh[0] * sh[0] + sh[1] * sh[1] + sh[2] * sh[2]);
       const int j = idx[s];
       double sig = 0.0;
@@ -790,10 +789,9 @@ void PairLatticeBond::planar_springs_from_vectors()
         sig = (dx * sh[1] - dy * sh[0] >= 0.0) ? len : -len;
       }
       sh[0] = sig;
-      sh[1] = sh[2] = 0.0;
     }
   }
-  fix_store->shear_layout = FixLatticeBondStore::SHEAR_PLANAR;
+  fix_store->set_shear_layout(FixLatticeBondStore::SHEAR_PLANAR);
 }
 
 /* ----------------------------------------------------------------------
@@ -805,17 +803,19 @@ void PairLatticeBond::planar_springs_from_vectors()
 
 bool PairLatticeBond::shear_vector(int i, int s, double *out) const
 {
-  const LatticeBondRecord &r = fix_store->records(i)[s];
-  for (int k = 0; k < 3; k++) out[k] = r.shear[k];
-  if (fix_store->shear_layout != FixLatticeBondStore::SHEAR_PLANAR || r.shear[0] == 0.0) return true;
-  int j = atom->map(r.partner);
+  const int nc = fix_store->ncomp;
+  const double *sh = fix_store->springs(i) + s * nc;
+  for (int k = 0; k < 3; k++) out[k] = (k < nc) ? sh[k] : 0.0;
+  if (fix_store->shear_layout != FixLatticeBondStore::SHEAR_PLANAR || sh[0] == 0.0) return true;
+  const tagint partner = fix_store->partners(i)[s];
+  int j = atom->map(partner);
   if (j >= 0) j = domain->closest_image(i, j);
-  if (j < 0 || atom->tag[j] != r.partner) return false;
+  if (j < 0 || atom->tag[j] != partner) return false;
   double **x = atom->x;
   const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1];
   const double rinv = 1.0 / sqrt(dx * dx + dy * dy);
-  out[0] = -r.shear[0] * dy * rinv;
-  out[1] = r.shear[0] * dx * rinv;
+  out[0] = -sh[0] * dy * rinv;
+  out[1] = sh[0] * dx * rinv;
   out[2] = 0.0;
   return true;
 }
@@ -836,10 +836,7 @@ void PairLatticeBond::detect_new_contacts()
     const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
     const double touch = radius[i] + radius[j];
     if (delx * delx + dely * dely + delz * delz < touch * touch) {
-      const int s = fix_store->nrec[i];
-      LatticeBondRecord *rec = fix_store->add_record(i);
-      rec->partner = tag[j];
-      rec->state = LB_CONTACT;
+      const int s = fix_store->add_record(i, tag[j], LB_CONTACT);
       if (fix_store->capacity != partner_stride) relayout_partners();
       partner_idx[(bigint) i * partner_stride + s] = j;
       if (hetero_flag) cache_bond_factors(i);
@@ -1112,14 +1109,14 @@ template <bool PLANAR> void PairLatticeBond::fit_sums_over_bonds()
   double *const sums = fit_sums.data();
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++) {
-    const LatticeBondRecord *__restrict r = fix_store->records(i);
+    const unsigned char *__restrict st = fix_store->states(i);
     const int *__restrict idx = partner_idx + (bigint) i * partner_stride;
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
     const double dxi = disp[i][0], dyi = disp[i][1], dzi = disp[i][2];
     double acc[NV] = {};
     for (int s = 0; s < nrec[i]; s++) {
       const int j = idx[s];
-      if (j < 0 || r[s].state != LB_INTACT) continue;
+      if (j < 0 || st[s] != LB_INTACT) continue;
       // the same expressions as in eval(), so that a rigid rotation cancels to round-off
       const double ux = dxi - disp[j][0], uy = dyi - disp[j][1];
       const double mx = (xi - x[j][0]) - 0.5 * ux, my = (yi - x[j][1]) - 0.5 * uy;
@@ -1265,6 +1262,15 @@ static inline __attribute__((always_inline)) void rotate_spring(const double *wi
 }
 
 /* ----------------------------------------------------------------------
+   a spring of NC components let go
+------------------------------------------------------------------------- */
+
+template <int NC> static inline void clear_spring(double *sh)
+{
+  for (int k = 0; k < NC; k++) sh[k] = 0.0;
+}
+
+/* ----------------------------------------------------------------------
    an intact bond breaks in shear when its shear force (squared: fs2) exceeds
    the Coulomb limit Fs0 - mu_p Fn, or when that limit is negative
 ------------------------------------------------------------------------- */
@@ -1325,12 +1331,18 @@ template <int F> void PairLatticeBond::eval()
   const double touch_equal = 2.0 * equal_radius;    // r + r is exact: the same bits
   const auto *const w = COROTATE ? reinterpret_cast<const double(*)[3]>(spin[0]) : nullptr;
   const bool can_break = breaking_enabled;    // off while lattice/quasistatic relaxes
+  // the springs: a signed length in 2D (compute() converts loaded vectors first)
+  constexpr int NC = PLANAR ? 1 : 3;
+  if (fix_store->ncomp != NC)
+    error->one(FLERR, "pair_style lattice/bond: internal error: {} spring components, the loop "
+               "expects {}", fix_store->ncomp, NC);
   double q_break_n = 0.0, q_break_s = 0.0, q_friction = 0.0;
 
   for (int i = 0; i < nlocal; i++) {
     const int nr = nrec[i];
     if (!nr) continue;
-    LatticeBondRecord *__restrict r = fix_store->records(i);
+    double *__restrict spr = fix_store->springs(i);
+    unsigned char *__restrict st = fix_store->states(i);
     const int *__restrict idx = partner_idx + (bigint) i * stride;
     const double *__restrict factors = HETERO ? bond_factor.data() + (size_t) i * stride * 2 : nullptr;
     const double xi = x[i][0], yi = x[i][1], zi = PLANAR ? 0.0 : x[i][2];
@@ -1359,7 +1371,7 @@ template <int F> void PairLatticeBond::eval()
     for (int s = 0; s < nr; s++) {
       const int j = idx[s];
       if (RARE(j < 0)) continue;    // broken bond whose partner is far away
-      LatticeBondRecord &b = r[s];
+      double *const sh = spr + s * NC;    // this record's spring
       const BondParams &p_type = UNIFORM ? p_uniform : prow[type[j]];
       // heterogeneous rock: this bond's own stiffness and strength
       BondParams p_bond;
@@ -1387,22 +1399,22 @@ template <int F> void PairLatticeBond::eval()
       const double dtan =
           PLANAR ? (uy * nx - ux * ny) * (1.0 + 0.5 * (ux * nx + uy * ny) * dinv[s]) : 0.0;
 
-      int state = b.state;
+      int state = st[s];
       if (RARE(state == LB_INTACT && xn > p.xb && can_break)) {
         // tensile break: both springs let go
-        b.state = LB_BROKEN_TENSION;
+        st[s] = LB_BROKEN_TENSION;
         state = LB_BROKEN_TENSION;
         if (TALLY) {
           q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
-          q_break_s += PLANAR ? planar_release(b, p.ks, dtan) : spring_release(b, p.ks, ddx, ddy, ddz);
-          b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
+          q_break_s += PLANAR ? planar_release(sh, p.ks, dtan) : spring_release(sh, p.ks, ddx, ddy, ddz);
+          clear_spring<NC>(sh);
         }
       }
       if (RARE(state != LB_INTACT && xn >= 0.0)) {
         // open contact: no force, no memory
         if (TALLY)
-          q_friction += PLANAR ? planar_release(b, p.ks, dtan) : spring_release(b, p.ks, ddx, ddy, ddz);
-        b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
+          q_friction += PLANAR ? planar_release(sh, p.ks, dtan) : spring_release(sh, p.ks, ddx, ddy, ddz);
+        clear_spring<NC>(sh);
         continue;
       }
 
@@ -1412,7 +1424,7 @@ template <int F> void PairLatticeBond::eval()
       if (state == LB_INTACT && !has_shear && p.fs0 - p.mu_p * fn < 0.0 && can_break) {
         // no shear spring: the bond fails in shear only when its Coulomb
         // limit itself becomes negative (tension above Fs0/mu_p)
-        b.state = LB_BROKEN_SHEAR;
+        st[s] = LB_BROKEN_SHEAR;
         state = LB_BROKEN_SHEAR;
         if (xn >= 0.0) {
           if (TALLY)
@@ -1425,12 +1437,12 @@ template <int F> void PairLatticeBond::eval()
       if (PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
         // 2D: the spring is a signed length along t, which turns with the
         // pair, so it needs no projection and keeps its length exactly
-        const double s1 = b.shear[0];
+        const double s1 = sh[0];
         double sig = s1 + dtan;
         int broke_now = 0;
         const double fs2 = p.ks * p.ks * sig * sig;
         if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break)) {
-          b.state = LB_BROKEN_SHEAR;
+          st[s] = LB_BROKEN_SHEAR;
           state = LB_BROKEN_SHEAR;
           broke_now = 1;
         }
@@ -1441,7 +1453,7 @@ template <int F> void PairLatticeBond::eval()
               q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
               q_break_s += planar_heat(p.ks, s1, dtan, 0.0);
             }
-            b.shear[0] = 0.0;
+            sh[0] = 0.0;
             continue;
           }
           if (FRICTION) {
@@ -1461,13 +1473,13 @@ template <int F> void PairLatticeBond::eval()
             sig = 0.0;
           }
         }
-        b.shear[0] = sig;
+        sh[0] = sig;
         // force on the owner -Ks sig t
         fsx = p.ks * sig * ny;
         fsy = -p.ks * sig * nx;
         if (EVFLAG) es = 0.5 * p.ks * sig * sig;
       } else if (!PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
-        double s0x = b.shear[0], s0y = b.shear[1], s0z = b.shear[2];
+        double s0x = sh[0], s0y = sh[1], s0z = sh[2];
         // shear_frame corotational: the spring turned with the pair's rotation
         if (COROTATE) rotate_spring(w[i], w[j], s0x, s0y, s0z);
         // the spring turned into the new tangent plane (its normal part
@@ -1500,7 +1512,7 @@ template <int F> void PairLatticeBond::eval()
         int broke_now = 0;
         const double fs2 = p.ks * p.ks * s2;
         if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break)) {
-          b.state = LB_BROKEN_SHEAR;
+          st[s] = LB_BROKEN_SHEAR;
           state = LB_BROKEN_SHEAR;
           broke_now = 1;
         }
@@ -1513,7 +1525,7 @@ template <int F> void PairLatticeBond::eval()
                   normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
               q_break_s += shear_heat(p.ks, s1, t, none);
             }
-            b.shear[0] = b.shear[1] = b.shear[2] = 0.0;
+            clear_spring<NC>(sh);
             continue;
           }
           if (FRICTION) {
@@ -1539,15 +1551,15 @@ template <int F> void PairLatticeBond::eval()
             sx = sy = sz = 0.0;
           }
         }
-        b.shear[0] = sx;
-        b.shear[1] = sy;
-        b.shear[2] = sz;
+        sh[0] = sx;
+        sh[1] = sy;
+        sh[2] = sz;
         fsx = -p.ks * sx;
         fsy = -p.ks * sy;
         fsz = -p.ks * sz;
         if (EVFLAG) es = 0.5 * p.ks * (sx * sx + sy * sy + sz * sz);
       } else if (has_shear) {
-        b.shear[0] = b.shear[1] = b.shear[2] = 0.0;    // a frictionless closed contact
+        clear_spring<NC>(sh);    // a frictionless closed contact
       }
 
       // force on the owner i; the partner gets the opposite
@@ -1610,10 +1622,8 @@ double PairLatticeBond::shear_heat(double ks, const double *s1, const double *t,
    the spring is not rotated
 ------------------------------------------------------------------------- */
 
-double PairLatticeBond::spring_release(const LatticeBondRecord &b, double ks, double tx, double ty,
-                                       double tz)
+double PairLatticeBond::spring_release(const double *sh, double ks, double tx, double ty, double tz)
 {
-  const double *sh = b.shear;
   if (sh[0] == 0.0 && sh[1] == 0.0 && sh[2] == 0.0) return 0.0;
   const double t[3] = {tx, ty, tz};
   const double none[3] = {0.0, 0.0, 0.0};
@@ -1630,9 +1640,9 @@ double PairLatticeBond::planar_heat(double ks, double s1, double t, double s2)
   return 0.5 * ks * ((s1 + s2) * t - s2 * s2 + s1 * s1);
 }
 
-double PairLatticeBond::planar_release(const LatticeBondRecord &b, double ks, double t)
+double PairLatticeBond::planar_release(const double *sh, double ks, double t)
 {
-  return planar_heat(ks, b.shear[0], t, 0.0);
+  return planar_heat(ks, sh[0], t, 0.0);
 }
 
 /* ----------------------------------------------------------------------
@@ -1701,17 +1711,16 @@ double PairLatticeBond::local_elastic_energy() const
   const double *radius = atom->radius;
   double energy = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
-    const LatticeBondRecord *r = fix_store->records(i);
+    const unsigned char *st = fix_store->states(i);
     const int *idx = partner_idx + (bigint) i * partner_stride;
     for (int s = 0; s < fix_store->nrec[i]; s++) {
       const int j = idx[s];
       if (j < 0) continue;
       const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
       const double xn = sqrt(dx * dx + dy * dy + dz * dz) - (radius[i] + radius[j]);
-      if (r[s].state != LB_INTACT && xn >= 0.0) continue;
+      if (st[s] != LB_INTACT && xn >= 0.0) continue;
       const BondParams p = bond_params(i, j);
-      const double *sh = r[s].shear;
-      energy += 0.5 * p.kn * xn * xn + 0.5 * p.ks * (sh[0] * sh[0] + sh[1] * sh[1] + sh[2] * sh[2]);
+      energy += 0.5 * p.kn * xn * xn + 0.5 * p.ks * fix_store->spring_squared(i, s);
     }
   }
   return energy;
