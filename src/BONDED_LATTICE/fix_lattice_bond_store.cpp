@@ -123,6 +123,16 @@ void FixLatticeBondStore::set_capacity(int n)
 
 void FixLatticeBondStore::relayout(int n, int nc)
 {
+  // nothing to keep (bonding sizes the store before adding records): free
+  // first, so that the peak memory never holds both layouts
+  if (local_max_records() == 0) {
+    memory->sfree(spring);
+    memory->sfree(partner);
+    memory->sfree(state);
+    spring = nullptr;
+    partner = nullptr;
+    state = nullptr;
+  }
   const bigint nslots = (bigint) nmax_store * n;
   auto *sp = (double *) memory->smalloc(nslots * nc * sizeof(double), "lattice/bond/store:spring");
   auto *pt = (tagint *) memory->smalloc(nslots * sizeof(tagint), "lattice/bond/store:partner");

@@ -613,6 +613,8 @@ void PairLatticeBond::create_bonds()
   // the most any atom has (no growth while bonding), then create them
   std::vector<int> count(nlocal, 0);
   bigint nbond_local = 0;
+  // 2D springs are signed lengths: the store holds one component from the start
+  if (domain->dimension == 2) fix_store->set_shear_layout(FixLatticeBondStore::SHEAR_PLANAR);
   for (int pass = 0; pass < 2; pass++) {
     for_each_owned_pair([&](int i, int j) {
       if (!bondable[type[i]][type[j]]) return;
@@ -644,7 +646,6 @@ void PairLatticeBond::create_bonds()
   bigint nbond = 0;
   MPI_Allreduce(&nbond_local, &nbond, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   fix_store->bonds_created = 1;
-  if (domain->dimension == 2) fix_store->set_shear_layout(FixLatticeBondStore::SHEAR_PLANAR);
   // the exact room: contacts add more when they need it
   fix_store->fit_capacity(fix_store->global_max_records());
   if (comm->me == 0)
