@@ -99,7 +99,7 @@ void ComputeLatticeBondLocal::compute_local()
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     const tagint *pt = store->partners(i);
-    const unsigned char *st = store->states(i);
+    const LatticeBondState *st = store->states(i);
     for (int s = 0; s < store->nrec[i]; s++, row++) {
       const int j = idx[(bigint) i * stride + s];
       const int jj = (j >= 0) ? j : i;

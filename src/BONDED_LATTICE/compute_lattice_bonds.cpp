@@ -87,7 +87,7 @@ void ComputeLatticeBonds::compute_vector()
     const int stride = pair->partner_index_stride();
     for (int i = 0; i < atom->nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
-      const unsigned char *st = store->states(i);
+      const LatticeBondState *st = store->states(i);
       for (int s = 0; s < store->nrec[i]; s++) {
         const int state = st[s];
         if (state == LB_INTACT) {
@@ -127,7 +127,7 @@ void ComputeLatticeBonds::compute_peratom()
   if (store && idx) {
     const int stride = pair->partner_index_stride();
     for (int i = 0; i < atom->nlocal; i++) {
-      const unsigned char *st = store->states(i);
+      const LatticeBondState *st = store->states(i);
       for (int s = 0; s < store->nrec[i]; s++) {
         if (st[s] != peratom_state) continue;
         intact_per_atom[i] += 1.0;

@@ -90,7 +90,7 @@ int FixLatticeBondStore::add_record(int i, tagint partner_tag, int record_state)
   double *sp = springs(i) + s * ncomp;
   for (int k = 0; k < ncomp; k++) sp[k] = 0.0;
   partners(i)[s] = partner_tag;
-  states(i)[s] = (unsigned char) record_state;
+  states(i)[s] = (LatticeBondState) record_state;
   return s;
 }
 
@@ -136,7 +136,7 @@ void FixLatticeBondStore::relayout(int n, int nc)
   const bigint nslots = (bigint) nmax_store * n;
   auto *sp = (double *) memory->smalloc(nslots * nc * sizeof(double), "lattice/bond/store:spring");
   auto *pt = (tagint *) memory->smalloc(nslots * sizeof(tagint), "lattice/bond/store:partner");
-  auto *st = (unsigned char *) memory->smalloc(nslots, "lattice/bond/store:state");
+  auto *st = (LatticeBondState *) memory->smalloc(nslots * sizeof(LatticeBondState), "lattice/bond/store:state");
   const int keep = std::min(nc, ncomp);
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++) {
@@ -147,7 +147,7 @@ void FixLatticeBondStore::relayout(int n, int nc)
     for (int s = 0; s < nr; s++)
       for (int k = 0; k < nc; k++) to[s * nc + k] = (k < keep) ? from[s * ncomp + k] : 0.0;
     std::memcpy(pt + (bigint) i * n, partners(i), nr * sizeof(tagint));
-    std::memcpy(st + (bigint) i * n, states(i), nr);
+    std::memcpy(st + (bigint) i * n, states(i), nr * sizeof(LatticeBondState));
   }
   memory->sfree(spring);
   memory->sfree(partner);
@@ -292,7 +292,8 @@ void FixLatticeBondStore::grow_arrays(int nmax)
                                        "lattice/bond/store:spring");
   partner = (tagint *) memory->srealloc(partner, nslots * sizeof(tagint),
                                         "lattice/bond/store:partner");
-  state = (unsigned char *) memory->srealloc(state, nslots, "lattice/bond/store:state");
+  state = (LatticeBondState *) memory->srealloc(state, nslots * sizeof(LatticeBondState),
+                                                "lattice/bond/store:state");
   nmax_store = nmax;
 }
 
@@ -304,7 +305,7 @@ void FixLatticeBondStore::copy_arrays(int i, int j, int /*delflag*/)
   if (nrec[i]) {
     std::memcpy(springs(j), springs(i), nrec[i] * ncomp * sizeof(double));
     std::memcpy(partners(j), partners(i), nrec[i] * sizeof(tagint));
-    std::memcpy(states(j), states(i), nrec[i]);
+    std::memcpy(states(j), states(i), nrec[i] * sizeof(LatticeBondState));
   }
   for (int k = 0; k < 3; k++) {
     xlast[j][k] = xlast[i][k];
@@ -338,7 +339,7 @@ int FixLatticeBondStore::pack_atom(int i, double *buf) const
   for (int k = 0; k < 3; k++) buf[m++] = xlast[i][k];
   const double *sp = springs(i);
   const tagint *pt = partners(i);
-  const unsigned char *st = states(i);
+  const LatticeBondState *st = states(i);
   for (int s = 0; s < nrec[i]; s++) {
     buf[m++] = ubuf(pt[s]).d;
     buf[m++] = ubuf((int) st[s]).d;
@@ -366,10 +367,10 @@ int FixLatticeBondStore::unpack_atom(int i, const double *buf)
   }
   double *sp = springs(i);
   tagint *pt = partners(i);
-  unsigned char *st = states(i);
+  LatticeBondState *st = states(i);
   for (int s = 0; s < n; s++) {
     pt[s] = (tagint) ubuf(buf[m++]).i;
-    st[s] = (unsigned char) ubuf(buf[m++]).i;
+    st[s] = (LatticeBondState) ubuf(buf[m++]).i;
     // a planar spring keeps the first value (the others are 0)
     for (int k = 0; k < ncomp; k++) sp[s * ncomp + k] = buf[m + k];
     m += 3;
@@ -464,6 +465,6 @@ void FixLatticeBondStore::restart(char *buf)
 
 double FixLatticeBondStore::memory_usage()
 {
-  const double per_record = ncomp * sizeof(double) + sizeof(tagint) + sizeof(unsigned char);
+  const double per_record = ncomp * sizeof(double) + sizeof(tagint) + sizeof(LatticeBondState);
   return (double) nmax_store * (sizeof(int) + 6 * sizeof(double) + capacity * per_record);
 }

@@ -27,7 +27,14 @@ namespace LAMMPS_NS {
 // tag and its state.  Separate arrays let the force loop stream springs and
 // states only; the partner tag is read after reneighbouring.
 
-enum LatticeBondState { LB_INTACT = 0, LB_BROKEN_TENSION = 1, LB_BROKEN_SHEAR = 2, LB_CONTACT = 3 };
+// one byte; its own type rather than a char, which the compiler must assume
+// aliases every other array of the force loop
+enum LatticeBondState : unsigned char {
+  LB_INTACT = 0,
+  LB_BROKEN_TENSION = 1,
+  LB_BROKEN_SHEAR = 2,
+  LB_CONTACT = 3
+};
 
 class FixLatticeBondStore : public Fix {
  public:
@@ -52,7 +59,7 @@ class FixLatticeBondStore : public Fix {
   // partners(i)[s], states(i)[s]; each atom has room for `capacity` records
   double *springs(int i) const { return spring + (bigint) i * capacity * ncomp; }
   tagint *partners(int i) const { return partner + (bigint) i * capacity; }
-  unsigned char *states(int i) const { return state + (bigint) i * capacity; }
+  LatticeBondState *states(int i) const { return state + (bigint) i * capacity; }
   // squared length of the spring of record s of atom i (either layout)
   double spring_squared(int i, int s) const
   {
@@ -79,7 +86,7 @@ class FixLatticeBondStore : public Fix {
   int ncomp;             // doubles per spring: 1 (SHEAR_PLANAR) or 3 (SHEAR_VECTOR)
   double *spring;        // shear springs, ncomp * capacity per atom
   tagint *partner;       // tag of the higher-tag particle, capacity per atom
-  unsigned char *state;  // one of LatticeBondState, capacity per atom
+  LatticeBondState *state;    // capacity per atom
   double **xlast;        // position at the last force evaluation (local atoms)
   double **disp;         // displacement since then (local atoms; ghosts by forward comm)
   int bonds_created;     // 1 once the initial bonds exist; never reset (survives restart)

@@ -132,7 +132,7 @@ void WriteLatticeBonds::command(int narg, char **arg)
   bigint unknown = 0;
   for (int i = 0; i < atom->nlocal; i++) {
     const tagint *pt = store->partners(i);
-    const unsigned char *st = store->states(i);
+    const LatticeBondState *st = store->states(i);
     for (int s = 0; s < store->nrec[i]; s++) {
       double sh[3];
       if (!pair->shear_vector(i, s, sh)) unknown++;

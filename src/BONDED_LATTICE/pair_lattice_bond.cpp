@@ -476,8 +476,8 @@ bool PairLatticeBond::has_shear_springs() const
 
 void PairLatticeBond::break_record(int i, int s, int mode)
 {
-  unsigned char &st = fix_store->states(i)[s];
-  if (st == LB_INTACT) st = (unsigned char) mode;
+  LatticeBondState &st = fix_store->states(i)[s];
+  if (st == LB_INTACT) st = (LatticeBondState) mode;
 }
 
 /* ----------------------------------------------------------------------
@@ -687,7 +687,7 @@ void PairLatticeBond::refresh_partners()
 
   for (int i = 0; i < nlocal; i++) {
     const tagint *pt = fix_store->partners(i);
-    const unsigned char *st = fix_store->states(i);
+    const LatticeBondState *st = fix_store->states(i);
     int *idx = partner_idx + (bigint) i * partner_stride;
     // walk downwards so that swap-with-last removal only moves visited records
     for (int s = fix_store->nrec[i] - 1; s >= 0; s--) {
@@ -1110,7 +1110,7 @@ template <bool PLANAR> void PairLatticeBond::fit_sums_over_bonds()
   double *const sums = fit_sums.data();
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++) {
-    const unsigned char *__restrict st = fix_store->states(i);
+    const LatticeBondState *__restrict st = fix_store->states(i);
     const int *__restrict idx = partner_idx + (bigint) i * partner_stride;
     const double xi = x[i][0], yi = x[i][1], zi = x[i][2];
     const double dxi = disp[i][0], dyi = disp[i][1], dzi = disp[i][2];
@@ -1343,7 +1343,7 @@ template <int F> void PairLatticeBond::eval()
     const int nr = nrec[i];
     if (!nr) continue;
     double *__restrict spr = fix_store->springs(i);
-    unsigned char *__restrict st = fix_store->states(i);
+    LatticeBondState *__restrict st = fix_store->states(i);
     const int *__restrict idx = partner_idx + (bigint) i * stride;
     const double *__restrict factors = HETERO ? bond_factor.data() + (size_t) i * stride * 2 : nullptr;
     const double xi = x[i][0], yi = x[i][1], zi = PLANAR ? 0.0 : x[i][2];
@@ -1712,7 +1712,7 @@ double PairLatticeBond::local_elastic_energy() const
   const double *radius = atom->radius;
   double energy = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
-    const unsigned char *st = fix_store->states(i);
+    const LatticeBondState *st = fix_store->states(i);
     const int *idx = partner_idx + (bigint) i * partner_stride;
     for (int s = 0; s < fix_store->nrec[i]; s++) {
       const int j = idx[s];
