@@ -191,3 +191,53 @@ def test_quasistatic_block_breaks_the_same_bonds_on_one_and_two_ranks(tmp_path):
     assert sum(c1) > 5, "the test must break bonds"
     assert c1 == c2
     np.testing.assert_array_equal(t1, t2)
+
+
+CHAIN_DECK = """
+units           si
+dimension       2
+boundary        f f p
+atom_style      sphere
+newton          on
+region          box block -2e-3 5e-3 -2e-3 2e-3 -5e-4 5e-4
+create_box      1 box
+create_atoms    1 single 0 0 0
+create_atoms    1 single 1.0e-3 0 0
+create_atoms    1 single 2.0e-3 0 0
+set             atom * diameter 1.0e-3
+set             atom * mass 2.295e-3
+pair_style      lattice/bond
+pair_coeff      * * 6.5874e10 0 1.0e-7 1.0e6 0.0
+neighbor        1.0e-4 bin
+group           ends id 1 3
+fix             line all setforce NULL 0 0
+fix             hold ends setforce 0 0 0
+compute         b all lattice/bonds
+min_style       fire
+run             0
+group           far id 3
+displace_atoms  far move 3.0e-7 0 0 units box
+{thermo}
+lattice/quasistatic ftol 1.0e-6 quiet {quiet}
+print           "BROKEN $(c_b[2])"
+"""
+
+
+@pytest.mark.parametrize("quiet", ["yes", "no"])
+def test_quiet_relaxations_print_only_the_summary(tmp_path, quiet):
+    result = run_deck(CHAIN_DECK.format(quiet=quiet, thermo=""), tmp_path)
+    assert result.returncode == 0, result.output[-2000:]
+    # one of the two bonds (stretched 1.5 Xb each) breaks, the other unloads
+    assert "BROKEN 1" in result.output
+    assert "lattice/quasistatic: 1 bonds broke (1 in tension, 0 in shear) in 2 relaxations" in \
+        result.output
+    assert ("Minimization stats" in result.output) == (quiet == "no")
+
+
+def test_an_error_in_a_quiet_relaxation_is_printed(tmp_path):
+    # a thermo variable that fails only when evaluated, in the first relaxation
+    thermo = "variable        bad equal v_missing\nthermo_style    custom step v_bad"
+    result = run_deck(CHAIN_DECK.format(quiet="yes", thermo=thermo), tmp_path)
+    assert result.returncode != 0
+    assert re.search(r"ERROR: Invalid variable reference v_missing.*\(in lattice/quasistatic: "
+                     r"minimize", result.output), result.output[-1500:]

@@ -2,7 +2,7 @@
    BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
 
    lattice/quasistatic ftol F [relax minimize|run N] [maxsteps M]
-                              [break one|all] [maxbreak K]
+                              [break one|all] [maxbreak K] [quiet yes|no]
 
    Breaking is switched off in pair_style lattice/bond while the command
    runs, so that a relaxation only finds the equilibrium of the network as
@@ -26,6 +26,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
+#include "exceptions.h"
 #include "fix_lattice_bond_store.h"
 #include "force.h"
 #include "input.h"
@@ -50,7 +51,7 @@ void LatticeQuasistatic::command(int narg, char **arg)
   if (!pair) error->all(FLERR, "lattice/quasistatic requires pair_style lattice/bond");
   if (narg < 2 || strcmp(arg[0], "ftol") != 0)
     error->all(FLERR, "lattice/quasistatic needs: ftol F [relax minimize|run N] [maxsteps M] "
-               "[break one|all] [maxbreak K]");
+               "[break one|all] [maxbreak K] [quiet yes|no]");
   ftol = utils::numeric(FLERR, arg[1], false, lmp);
   if (!(ftol > 0.0))
     error->all(FLERR, "lattice/quasistatic ftol {} is out of range: need > 0 (force units, the "
@@ -87,9 +88,11 @@ void LatticeQuasistatic::command(int narg, char **arg)
       maxbreak = utils::bnumeric(FLERR, value.c_str(), false, lmp);
       if (maxbreak < 0)
         error->all(FLERR, "lattice/quasistatic maxbreak {} is out of range: need >= 0", maxbreak);
+    } else if (key == "quiet") {
+      quiet = utils::logical(FLERR, value, false, lmp);
     } else {
       error->all(FLERR, "Unknown lattice/quasistatic keyword {}: valid are relax, maxsteps, break, "
-                 "maxbreak", key);
+                 "maxbreak, quiet", key);
     }
     iarg += 2;
   }
@@ -143,9 +146,10 @@ bigint LatticeQuasistatic::relax()
                  "fix lattice/nve and fix lattice/viscous (damped dynamics)");
     // line-search steps no longer than a small part of a particle
     const double radius = pair->smallest_radius();
-    if (radius > 0.0) input->one(fmt::format("min_modify dmax {:.17g} norm max", DMAX_FRACTION * radius));
-    else input->one("min_modify norm max");
-    input->one(fmt::format("minimize 0.0 {:.17g} {} {}", ftol, maxsteps, 10 * maxsteps));
+    if (radius > 0.0)
+      command_quietly(fmt::format("min_modify dmax {:.17g} norm max", DMAX_FRACTION * radius));
+    else command_quietly("min_modify norm max");
+    command_quietly(fmt::format("minimize 0.0 {:.17g} {} {}", ftol, maxsteps, 10 * maxsteps));
     if (largest_force() > ftol && comm->me == 0)
       error->warning(FLERR, "lattice/quasistatic: the minimiser stopped with a force component of "
                      "{:.6g} above ftol {:.6g} (raise maxsteps, or check min_style)",
@@ -156,7 +160,7 @@ bigint LatticeQuasistatic::relax()
   bool first = true;
   while (done < maxsteps) {
     const bigint n = MIN(chunk, maxsteps - done);
-    input->one(fmt::format("run {} pre {} post no", n, first ? "yes" : "no"));
+    command_quietly(fmt::format("run {} pre {} post no", n, first ? "yes" : "no"));
     first = false;
     done += n;
     if (largest_force() <= ftol) return done;
@@ -166,6 +170,44 @@ bigint LatticeQuasistatic::relax()
                    "({:.6g}) below ftol {:.6g}; raise maxsteps or the damping", maxsteps,
                    largest_force(), ftol);
   return done;
+}
+
+/* ----------------------------------------------------------------------
+   one input line; with quiet yes its output (echo, thermo, the minimiser's
+   and the run's summaries) goes nowhere.  An error still stops the input and
+   is printed once the output streams are back
+------------------------------------------------------------------------- */
+
+void LatticeQuasistatic::command_quietly(const std::string &line)
+{
+  if (!quiet) {
+    input->one(line);
+    return;
+  }
+  struct Restore {
+    LAMMPS *lmp;
+    FILE *screen, *logfile;
+    ~Restore()
+    {
+      lmp->screen = screen;
+      lmp->logfile = logfile;
+    }
+  } restore{lmp, lmp->screen, lmp->logfile};
+  lmp->screen = nullptr;
+  lmp->logfile = nullptr;
+  try {
+    input->one(line);
+  } catch (LAMMPSException &e) {
+    // the error was not printed (no output streams): print it with them back
+    lmp->screen = restore.screen;
+    lmp->logfile = restore.logfile;
+    if (comm->me == 0) {
+      const std::string text = e.what();
+      utils::logmesg(lmp, "{}{} (in lattice/quasistatic: {})\n",
+                     utils::strmatch(text, "^ERROR") ? "" : "ERROR: ", utils::trim(text), line);
+    }
+    throw;
+  }
 }
 
 /* ---------------------------------------------------------------------- */

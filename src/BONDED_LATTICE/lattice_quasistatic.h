@@ -19,6 +19,8 @@ CommandStyle(lattice/quasistatic,LatticeQuasistatic);
 
 #include "command.h"
 
+#include <string>
+
 namespace LAMMPS_NS {
 
 class PairLatticeBond;
@@ -36,6 +38,9 @@ class LatticeQuasistatic : public Command {
   bigint maxsteps = 100000;     // per relaxation: minimiser iterations or time steps
   bool break_all = false;       // break every bond past its threshold, else the worst one
   bigint maxbreak = -1;         // most bonds broken in one call, -1: no limit
+  bool quiet = false;           // no output of the relaxations (minimiser and run summaries)
+
+  void command_quietly(const std::string &line);
 
   bigint relax();               // returns the iterations or steps taken
   double largest_force() const;
