@@ -208,3 +208,30 @@ def test_dynamic_polycrystal_breaks_on_grain_boundaries_first(tmp_path):
     assert np.all(model.grain[pairs[:, 0] - 1] != model.grain[pairs[:, 1] - 1])
     final = broken_bonds(folder / "bonds.final.txt")
     assert len(final) > 0 and np.all(final[:, 2] == 1)
+
+
+def test_uniaxial_step_wall_stresses_match_the_plane_moduli(tmp_path):
+    """One uniaxial step (x by 1 + e, the y walls held) of an unbreakable homogeneous box:
+    sigma_yy = lambda e_xx exactly (the top row's bonds, see the pure-shear test) and
+    sigma_xx = (lambda + 2 mu) e_xx up to the edge term of the n_y - 1 diagonal bonds
+    (1/(3 n_y) of it in pure shear; here the diagonals carry e/4 against the horizontals' e,
+    so the bond-by-bond value is checked to 1e-4 and the continuum to 2 %); their ratio is
+    the lattice's plane value lambda / (lambda + 2 mu) = 1/3."""
+    scene = Scene("polycrystal", n_x=20, n_steps=1, strain_step=1e-5, stiffness_sd=0.0,
+                  strength_min=100.0, strength_max=100.0, deformation="uniaxial")
+    folder, _ = run(scene, tmp_path)
+    dat = read_scene_dat(folder / "scene.dat")
+    exx, eyy, sxx, syy = dat["exx"][-1], dat["eyy"][-1], dat["sxx"][-1], dat["syy"][-1]
+    assert exx == pytest.approx(1e-5, rel=1e-6)
+    assert abs(eyy) < 1e-12
+    lam, mu = plane_moduli(scene.bond.Kn)
+    assert syy == pytest.approx(lam * exx, rel=1e-4)
+    n_y, kn = scene.rows, scene.bond.Kn
+    force = n_y * kn * D * exx + (n_y - 1) * kn * D * (exx / 4) / 2
+    assert sxx == pytest.approx(force / (n_y * math.sqrt(3) / 2 * D), rel=1e-4)
+    assert sxx == pytest.approx((lam + 2 * mu) * exx, rel=0.02)
+
+
+def test_uniaxial_is_refused_for_growing_grains():
+    with pytest.raises(ValueError, match="deformation = 'uniaxial': growing grains"):
+        Scene("expanding", deformation="uniaxial")

@@ -160,7 +160,8 @@ def _scene(args: argparse.Namespace):
                  n_expanding=args.expanding, mode=args.mode, strain_step=args.strain_step,
                  n_steps=args.steps, ftol=args.ftol, crossings=args.crossings,
                  damping=args.damping, output_every=args.output_every,
-                 bond_dumps=args.bond_dumps, dt_fraction=args.dt_fraction)
+                 bond_dumps=args.bond_dumps, dt_fraction=args.dt_fraction,
+                 deformation=args.deformation)
 
 
 def cmd_scene(args: argparse.Namespace) -> int:
@@ -379,6 +380,9 @@ def main(argv: list[str] | None = None) -> int:
                    help="relaxation tolerance, fraction of Kn Xb (default 1e-3)")
     p.add_argument("--crossings", type=float, default=50.0,
                    help="dynamic: P-wave crossings of the box over the whole loading")
+    p.add_argument("--deformation", choices=("pure-shear", "uniaxial"), default="pure-shear",
+                   help="pure shear (default: the other axis keeps the area) or uniaxial (the "
+                   "walls across the other axis held)")
     p.add_argument("--dt-fraction", type=float, default=0.19,
                    help="dynamic: time step as a fraction of the critical one (default 0.19, "
                    "at most 0.5)")

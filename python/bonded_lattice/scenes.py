@@ -53,6 +53,9 @@ from .grains import (GrainPairOptions, competent_layer, particle_stiffness,
 from .lattice import Lattice, write_data
 
 KINDS = ("layer-extension", "layer-compression", "polycrystal", "expanding")
+# how the box deforms: pure shear (the other axis shortens or lengthens to keep the area),
+# or uniaxial (the other axis' walls stay where they are)
+DEFORMATIONS = ("pure-shear", "uniaxial")
 MODES = ("quasistatic", "dynamic")
 SQRT3 = math.sqrt(3.0)
 ROW = 0.5 * SQRT3            # row spacing of the hexagonal lattice, in units of d
@@ -112,7 +115,9 @@ class Scene:
     grains, 1 for the layer: :attr:`boundary_factor`); n_expanding grains
     (those nearest the centre, preferably touching no wall) grow.
 
-    Loading: quasistatic: n_steps steps of strain_step (engineering strain of
+    Loading: deformation "pure-shear" (y scaled by the inverse of x) or
+    "uniaxial" (y walls held; not for expanding grains, whose walls are held
+    anyway); quasistatic: n_steps steps of strain_step (engineering strain of
     the box along x; for expanding grains the relative diameter increase of
     the growing grains per step), each relaxed to ftol x Kn Xb (the force
     of a bond at its breaking point) with break one; dynamic: the same total
@@ -139,6 +144,7 @@ class Scene:
     seed: int = 1
     n_expanding: int = 2
     mode: str = "quasistatic"
+    deformation: str = "pure-shear"
     strain_step: float = 2.0e-5
     n_steps: int = 30
     ftol: float = 1.0e-3
@@ -154,6 +160,12 @@ class Scene:
             raise ValueError(f"kind = {self.kind!r} is not known: use one of {', '.join(KINDS)}")
         if self.mode not in MODES:
             raise ValueError(f"mode = {self.mode!r} is not known: use one of {', '.join(MODES)}")
+        if self.deformation not in DEFORMATIONS:
+            raise ValueError(f"deformation = {self.deformation!r} is not known: use one of "
+                             f"{', '.join(DEFORMATIONS)}")
+        if self.kind == "expanding" and self.deformation != "pure-shear":
+            raise ValueError(f"deformation = {self.deformation!r}: growing grains load a box "
+                             "whose walls are held; the deformation does not apply")
         if self.n_x < 4:
             raise ValueError(f"n_x = {self.n_x} is out of range: need n_x >= 4")
         if self.n_y != 0 and self.n_y < 4:
@@ -342,9 +354,11 @@ def build_model(scene: Scene) -> SceneModel:
 def _strain_scales(scene: Scene) -> tuple[str, str]:
     """change_box scale factors of one quasi-static strain step (x, y)."""
     a = 1.0 + scene.strain_step
+    # pure shear: the other axis by the inverse (area kept); uniaxial: held
+    other = (lambda f: repr(1.0)) if scene.deformation == "uniaxial" else (lambda f: repr(1.0 / f))
     if scene.kind == "layer-compression":
-        return repr(1.0 / a), repr(a)
-    return repr(a), repr(1.0 / a)
+        return repr(1.0 / a), other(1.0 / a)
+    return repr(a), other(a)
 
 
 def _rates(scene: Scene, duration: float) -> tuple[float, float]:
@@ -352,16 +366,23 @@ def _rates(scene: Scene, duration: float) -> tuple[float, float]:
     if scene.kind == "expanding":
         return 0.0, 0.0
     rate = scene.total_strain() / duration
-    return (-rate, rate) if scene.kind == "layer-compression" else (rate, -rate)
+    other = 0.0 if scene.deformation == "uniaxial" else 1.0
+    return (-rate, other * rate) if scene.kind == "layer-compression" else (rate, -other * rate)
 
 
 TITLES = {
     "layer-extension": "competent layer in a weak matrix, layer-parallel extension (pure shear)",
     "layer-compression": "competent layer in a weak matrix, layer-parallel compression "
                          "(pure shear)",
-    "polycrystal": "polycrystal under pure shear (x extended, y shortened)",
+    "polycrystal": "polycrystal under pure shear, x extended",
     "expanding": "expanding grains in a polycrystal, walls held",
 }
+
+
+def scene_title(scene: Scene) -> str:
+    """The scene's title, with its deformation."""
+    title = TITLES[scene.kind]
+    return title.replace("pure shear", "uniaxial strain") if scene.deformation == "uniaxial" else title
 
 
 def deck_text(scene: Scene, model: SceneModel | None = None,
@@ -374,7 +395,7 @@ def deck_text(scene: Scene, model: SceneModel | None = None,
     qs = scene.mode == "quasistatic"
     # fix adapt changes radii during a run: only with a dynamic radius (sphere 1)
     style = "sphere 1" if scene.kind == "expanding" and not qs else "sphere"
-    head = f"""# Mike/Elle scene: {TITLES[scene.kind]}
+    head = f"""# Mike/Elle scene: {scene_title(scene)}
 # {scene.n} particles ({scene.n_x} per row, {scene.rows} rows), {scene.mode} loading.
 # Written by bonded_lattice.scenes; run: lmp -in <this file> (or mpirun -np 2 lmp -in ...)
 # Central springs (the seed's): Kn {b.Kn:.6g} N/m, Ks 0, Xb {b.Xb:.6g} m, mu_p 0;
@@ -706,7 +727,7 @@ def picture_scene(scene: Scene, out: str | Path, model: SceneModel | None = None
     model = model or build_model(scene)
     records = read_bond_dump(out / "bonds.final.txt")
     highlight = np.isin(model.grain, model.expanding) if model.expanding else None
-    title = f"{TITLES[scene.kind]}\n{scene.n} particles, {scene.mode}"
+    title = f"{scene_title(scene)}\n{scene.n} particles, {scene.mode}"
     scene_bonds_png(out / f"{prefix}broken_bonds.png", model.lattice.positions, model.grain,
                     records, scene.d, title=title + ": broken bonds by mode",
                     highlight=highlight)
