@@ -64,6 +64,15 @@ def states(lmp) -> dict[tuple[int, int], tuple[int, float]]:
     return {(int(r[0]), int(r[1])): (int(r[2]), float(r[3])) for r in table}
 
 
+CHAIN = [(1, 2), (2, 3), (3, 4)]
+
+
+def chain_states(lmp) -> list[int]:
+    """The states of the chain's bonds 1-2, 2-3, 3-4 (0 intact, 1 broken in tension)."""
+    s = states(lmp)
+    return [s[bond][0] for bond in CHAIN]
+
+
 def test_break_one_breaks_the_most_overstressed_bond_only(lmp_instance):
     lmp = lmp_instance
     chain(lmp)
@@ -71,8 +80,8 @@ def test_break_one_breaks_the_most_overstressed_bond_only(lmp_instance):
     lmp.command("lattice/quasistatic ftol 1.0e-6")
     s = states(lmp)
     # below every threshold: the relaxed chain shares the stretch equally
-    assert [s[(1, 2)][0], s[(2, 3)][0], s[(3, 4)][0]] == [0, 0, 0]
-    np.testing.assert_allclose([s[(1, 2)][1], s[(2, 3)][1], s[(3, 4)][1]],
+    assert [s[bond][0] for bond in CHAIN] == [0, 0, 0]
+    np.testing.assert_allclose([s[bond][1] for bond in CHAIN],
                                [0.9, 0.9 / 1.05, 0.45], rtol=1e-6)
     pull(lmp, 3 * 0.2 * X0)  # u/3 = 1.1 X0
     lmp.command("lattice/quasistatic ftol 1.0e-6 break one")
@@ -93,8 +102,7 @@ def test_break_all_breaks_every_bond_past_its_threshold(lmp_instance):
     chain(lmp)
     pull(lmp, 3 * 1.1 * X0)
     lmp.command("lattice/quasistatic ftol 1.0e-6 break all")
-    s = states(lmp)
-    assert [s[(1, 2)][0], s[(2, 3)][0], s[(3, 4)][0]] == [1, 1, 0]
+    assert chain_states(lmp) == [1, 1, 0]
 
 
 def test_maxbreak_zero_only_relaxes(lmp_instance):
@@ -102,9 +110,8 @@ def test_maxbreak_zero_only_relaxes(lmp_instance):
     chain(lmp)
     pull(lmp, 3 * 1.1 * X0)
     lmp.command("lattice/quasistatic ftol 1.0e-6 maxbreak 0")
-    s = states(lmp)
-    assert [s[(1, 2)][0], s[(2, 3)][0], s[(3, 4)][0]] == [0, 0, 0]
-    assert s[(1, 2)][1] == pytest.approx(1.1, rel=1e-6)
+    assert chain_states(lmp) == [0, 0, 0]
+    assert states(lmp)[(1, 2)][1] == pytest.approx(1.1, rel=1e-6)
 
 
 def test_damped_dynamics_with_shear_springs_gives_the_same_order(lmp_instance):
@@ -117,8 +124,7 @@ def test_damped_dynamics_with_shear_springs_gives_the_same_order(lmp_instance):
     lmp.command("timestep 2.0e-8")
     pull(lmp, 3 * 1.1 * X0)
     lmp.command("lattice/quasistatic ftol 1.0e-3 relax run 200 maxsteps 200000")
-    s = states(lmp)
-    assert [s[(1, 2)][0], s[(2, 3)][0], s[(3, 4)][0]] == [1, 0, 0]
+    assert chain_states(lmp) == [1, 0, 0]
 
 
 def test_minimize_with_shear_springs_is_refused(tmp_path):
