@@ -92,7 +92,6 @@ void ComputeLatticeBondLocal::compute_local()
   if (!rows) return;
 
   double **x = atom->x;
-  const double *radius = atom->radius;
   const tagint *tag = atom->tag;
   const int stride = pair->partner_index_stride();
   int row = 0;
@@ -103,38 +102,27 @@ void ComputeLatticeBondLocal::compute_local()
     for (int s = 0; s < store->nrec[i]; s++, row++) {
       const int j = idx[(bigint) i * stride + s];
       const int jj = (j >= 0) ? j : i;
-      const PairLatticeBond::BondParams p = pair->bond_params(i, jj);
-      double dist = 0.0, fn = 0.0, fs = 0.0, ratio = 0.0;
-      if (j >= 0) {
-        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-        dist = sqrt(dx * dx + dy * dy + dz * dz);
-        const double xn = dist - (radius[i] + radius[j]);
-        // an open broken bond or contact carries no force
-        if (st[s] == LB_INTACT || xn < 0.0) {
-          fn = p.kn * xn;
-          fs = p.ks * sqrt(store->spring_squared(i, s));
-        }
-        int mode;
-        ratio = pair->break_ratio(i, s, mode);
-      }
+      int mode;
+      const PairLatticeBond::BondLoad load = pair->bond_load(i, s, mode);
+      const PairLatticeBond::BondParams &p = load.p;
       for (size_t v = 0; v < values.size(); v++) {
         double value = 0.0;
         switch (values[v]) {
           case ID1: value = (double) tag[i]; break;
           case ID2: value = (double) pt[s]; break;
           case STATE: value = st[s]; break;
-          case DIST: value = dist; break;
+          case DIST: value = load.dist; break;
           case X: case Y: case Z: {
             const int k = values[v] - X;
             value = 0.5 * (x[i][k] + x[jj][k]);
             break;
           }
-          case FN: value = fn; break;
-          case FS: value = fs; break;
+          case FN: value = load.fn; break;
+          case FS: value = load.fs; break;
           case KN: value = p.kn; break;
           case FB: value = p.kn * p.xb; break;
           case FS0: value = p.fs0; break;
-          case RATIO: value = ratio; break;
+          case RATIO: value = load.ratio; break;
         }
         if (size_local_cols == 0) vlocal[row] = value;
         else alocal[row][v] = value;

@@ -60,9 +60,7 @@ FixLatticeBondStore::~FixLatticeBondStore()
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(nrec);
-  memory->sfree(spring);
-  memory->sfree(partner);
-  memory->sfree(state);
+  replace_records(nullptr, nullptr, nullptr);
   memory->destroy(xlast);
   memory->destroy(disp);
 }
@@ -116,6 +114,20 @@ void FixLatticeBondStore::set_capacity(int n)
 }
 
 /* ----------------------------------------------------------------------
+   free the record arrays and take the given ones (nullptr: none)
+------------------------------------------------------------------------- */
+
+void FixLatticeBondStore::replace_records(double *sp, tagint *pt, LatticeBondState *st)
+{
+  memory->sfree(spring);
+  memory->sfree(partner);
+  memory->sfree(state);
+  spring = sp;
+  partner = pt;
+  state = st;
+}
+
+/* ----------------------------------------------------------------------
    the local atoms' records copied into arrays with room for n records of
    nc spring components per atom: components beyond the old ones are zero,
    fewer keep the first ones
@@ -125,14 +137,7 @@ void FixLatticeBondStore::relayout(int n, int nc)
 {
   // nothing to keep (bonding sizes the store before adding records): free
   // first, so that the peak memory never holds both layouts
-  if (local_max_records() == 0) {
-    memory->sfree(spring);
-    memory->sfree(partner);
-    memory->sfree(state);
-    spring = nullptr;
-    partner = nullptr;
-    state = nullptr;
-  }
+  if (local_max_records() == 0) replace_records(nullptr, nullptr, nullptr);
   const bigint nslots = (bigint) nmax_store * n;
   auto *sp = (double *) memory->smalloc(nslots * nc * sizeof(double), "lattice/bond/store:spring");
   auto *pt = (tagint *) memory->smalloc(nslots * sizeof(tagint), "lattice/bond/store:partner");
@@ -149,12 +154,7 @@ void FixLatticeBondStore::relayout(int n, int nc)
     std::memcpy(pt + (bigint) i * n, partners(i), nr * sizeof(tagint));
     std::memcpy(st + (bigint) i * n, states(i), nr * sizeof(LatticeBondState));
   }
-  memory->sfree(spring);
-  memory->sfree(partner);
-  memory->sfree(state);
-  spring = sp;
-  partner = pt;
-  state = st;
+  replace_records(sp, pt, st);
   capacity = n;
   ncomp = nc;
 }

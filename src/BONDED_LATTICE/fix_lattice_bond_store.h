@@ -106,6 +106,7 @@ class FixLatticeBondStore : public Fix {
   static constexpr int RESTART_FORMAT = 3;
   void set_capacity(int n);
   void relayout(int new_capacity, int new_ncomp);
+  void replace_records(double *, tagint *, LatticeBondState *);
   template <int DIM> int orthogonal_steps(double limit);
   int first_beyond(double limit, int dim) const;
   int pack_atom(int, double *) const;

@@ -440,22 +440,28 @@ PairLatticeBond::BondParams PairLatticeBond::bond_params(int i, int j) const
    LB_BROKEN_SHEAR, the larger one; 0 and LB_INTACT for other records
 ------------------------------------------------------------------------- */
 
-double PairLatticeBond::break_ratio(int i, int s, int &mode) const
+PairLatticeBond::BondLoad PairLatticeBond::bond_load(int i, int s, int &mode) const
 {
   mode = LB_INTACT;
   const int j = partner_idx ? partner_idx[(bigint) i * partner_stride + s] : -1;
-  if (fix_store->states(i)[s] != LB_INTACT || j < 0) return 0.0;
+  BondLoad load{bond_params(i, j >= 0 ? j : i), 0.0, 0.0, 0.0, 0.0};
+  if (j < 0) return load;    // a broken bond whose particles are far apart
   double **x = atom->x;
   const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-  const double xn = sqrt(dx * dx + dy * dy + dz * dz) - (atom->radius[i] + atom->radius[j]);
-  const BondParams p = bond_params(i, j);
-  const double fn = p.kn * xn;
-  const double fs = p.ks * sqrt(fix_store->spring_squared(i, s));
+  load.dist = sqrt(dx * dx + dy * dy + dz * dz);
+  const double xn = load.dist - (atom->radius[i] + atom->radius[j]);
+  const bool intact = (fix_store->states(i)[s] == LB_INTACT);
+  if (!intact && xn >= 0.0) return load;    // an open contact carries no force
+  const BondParams &p = load.p;
+  load.fn = p.kn * xn;
+  load.fs = p.ks * sqrt(fix_store->spring_squared(i, s));
+  if (!intact) return load;
   const double tension = xn / p.xb;
-  const double load = fs + p.mu_p * fn;
-  const double shear = (p.fs0 > 0.0) ? load / p.fs0 : (load > 0.0 ? BIG : 0.0);
+  const double coulomb = load.fs + p.mu_p * load.fn;
+  const double shear = (p.fs0 > 0.0) ? coulomb / p.fs0 : (coulomb > 0.0 ? BIG : 0.0);
   mode = (tension >= shear) ? LB_BROKEN_TENSION : LB_BROKEN_SHEAR;
-  return MAX(tension, shear);
+  load.ratio = MAX(tension, shear);
+  return load;
 }
 
 /* ---------------------------------------------------------------------- */

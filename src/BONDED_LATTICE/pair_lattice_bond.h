@@ -85,7 +85,15 @@ class PairLatticeBond : public Pair {
   // quasi-static loading (command lattice/quasistatic): breaking is switched
   // off while it relaxes; it breaks the most over-stressed bonds itself
   void enable_breaking(bool flag) { breaking_enabled = flag; }
-  double break_ratio(int i, int s, int &mode) const;
+  double break_ratio(int i, int s, int &mode) const { return bond_load(i, s, mode).ratio; }
+  // record s of local atom i at the current positions: its parameters, length,
+  // normal force (tension positive; 0 while an unbonded or broken pair is apart),
+  // shear force and ratio to its breaking threshold (see break_ratio)
+  struct BondLoad {
+    BondParams p;
+    double dist, fn, fs, ratio;
+  };
+  BondLoad bond_load(int i, int s, int &mode) const;
   void break_record(int i, int s, int mode);
   bool has_shear_springs() const;    // some type pair has Ks > 0
   double smallest_radius() const { return min_radius; }
