@@ -36,7 +36,7 @@ lattice         fcc {a}
 region          box block -1 {n1} -1 {n1} -1 {n1}
 create_box      {box_args}
 region          block block 0 {n} 0 {n} 0 {n}
-create_atoms    1 region block
+{numbering}create_atoms    1 region block
 """,
     # hexagonal rows along x, loading along y (the 2013 paper's set-up)
     2: """
@@ -47,9 +47,21 @@ lattice         hex {d}
 region          box block -1 {n1} -1 {n1y} -0.5 0.5
 create_box      {box_args}
 region          block block 0 {n} 0 {ny} -0.5 0.5
-create_atoms    1 region block
+{numbering}create_atoms    1 region block
 """,
 }
+
+# The same points numbered row by row, as `bonded-lattice generate` numbers them:
+# a one-atom (primitive) cell, so that create_atoms, which numbers cell by cell,
+# gives each particle half its bonds at the higher IDs (3D 6, 2D 3).  The
+# conventional cells of `lattice fcc` (4 atoms) and `lattice hex` (2) give some
+# particles 7 (4 in 2D), and lattice/bond stores each bond on the lower ID.
+# The regions above are in the conventional cell's units either way.
+PRIMITIVE = {
+    3: "lattice         custom {a} a1 0.5 0.5 0.0 a2 0.5 0.0 0.5 a3 0.0 0.5 0.5 basis 0 0 0\n",
+    2: "lattice         custom {d} a1 1.0 0.0 0.0 a2 0.5 {h} 0.0 a3 0.0 0.0 1.0 basis 0 0 0\n",
+}
+NUMBERINGS = ("rows", "cells")
 
 GROUPS = """
 variable        lo equal $(bound(all,{ax}min))
@@ -167,23 +179,30 @@ FEATURE_MODELS = ["lattice/bond", "lattice/bond:frictionless", "lattice/bond:no-
                   "lattice/bond:heterogeneous"]
 
 
-def build_input(name: str, cells: int, dim: int = 3) -> str:
+def build_input(name: str, cells: int, dim: int = 3, numbering: str = "rows") -> str:
     """The LAMMPS input of one model, up to (not including) the runs.
 
     cells: fcc cells per side in 3D (4 particles each), particles along x in 2D.
+    numbering: "rows" (one-atom cells, as bonded-lattice generate numbers) or
+    "cells" (create_atoms' conventional fcc / hex cells); the same points either way.
     """
+    if numbering not in NUMBERINGS:
+        raise ValueError(f"numbering {numbering!r}: expected one of {NUMBERINGS}")
     spec = MODELS[name]
     p = PARAMS[dim]
     values = dict(p, xb_d=p["xb"] / D, fs0x10=10 * p["fs0"])
     parts = [spec["setup"]]
+    a = math.sqrt(2) * D
+    primitive = PRIMITIVE[dim].format(a=a, d=D, h=math.sqrt(3) / 2) if numbering == "rows" else ""
     if dim == 3:
-        parts.append(LATTICE[3].format(a=math.sqrt(2) * D, n=cells - 0.1, n1=cells + 1,
-                                       box_args=spec["box_args"]))
+        parts.append(LATTICE[3].format(a=a, n=cells - 0.1, n1=cells + 1,
+                                       box_args=spec["box_args"], numbering=primitive))
         ax, v = "z", ("0 0 0.05", "0 0 -0.05")
     else:
         rows = cells / math.sqrt(3)          # hex cells of d x sqrt3 d with 2 particles: square
         parts.append(LATTICE[2].format(d=D, n=cells - 0.1, n1=cells + 1, ny=rows - 0.1,
-                                       n1y=rows + 1, box_args=spec["box_args"]))
+                                       n1y=rows + 1, box_args=spec["box_args"],
+                                       numbering=primitive))
         ax, v = "y", ("0 0.05 0", "0 -0.05 0")
     slab = {"z": "INF INF INF INF {lo} {hi}", "y": "INF INF {lo} {hi} INF INF"}[ax]
     parts.append(GROUPS.format(
@@ -207,7 +226,8 @@ def memory_kb(field: str) -> float:
     raise RuntimeError(f"{field} not in /proc/self/status")
 
 
-def run_model(name: str, cells: int, steps: int, dim: int = 3) -> tuple[int, float, float]:
+def run_model(name: str, cells: int, steps: int, dim: int = 3,
+              numbering: str = "rows") -> tuple[int, float, float]:
     """Particle-steps per second of one model (see build_input), and the growth of
     the process's peak resident memory over the run in bytes per particle (only
     meaningful for the first model run in a process: the peak never goes down)."""
@@ -215,7 +235,7 @@ def run_model(name: str, cells: int, steps: int, dim: int = 3) -> tuple[int, flo
 
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
     rss_before = memory_kb("VmRSS")
-    lmp.commands_string(build_input(name, cells, dim))
+    lmp.commands_string(build_input(name, cells, dim, numbering))
     natoms = lmp.get_natoms()
     lmp.command("run 100")  # setup, bond creation, warm caches
     t0 = time.perf_counter()
@@ -242,6 +262,10 @@ def main() -> None:
                         help="fcc cells per side (4 atoms each) in 3D, particles along x in 2D")
     parser.add_argument("--dim", type=int, choices=(2, 3), default=3)
     parser.add_argument("--steps", type=int, default=2000)
+    parser.add_argument("--numbering", choices=NUMBERINGS, default="rows",
+                        help="particle IDs row by row (one-atom cells, as bonded-lattice "
+                             "generate numbers them; default) or cell by cell (create_atoms "
+                             "with the conventional fcc / hex cell)")
     parser.add_argument("--models", nargs="+", default=list(MODELS), choices=list(MODELS))
     parser.add_argument("--write-inputs", metavar="DIR",
                         help="write each model's input (in.<model>, with a 'run' of --steps) "
@@ -254,20 +278,21 @@ def main() -> None:
         out.mkdir(parents=True, exist_ok=True)
         for name in args.models:
             path = out / f"in.{name.replace('/', '_').replace('+', '_').replace(':', '_')}"
-            path.write_text(build_input(name, args.cells, args.dim)
+            path.write_text(build_input(name, args.cells, args.dim, args.numbering)
                             + f"run             {args.steps}\n")
             print(path)
         return
     rank = world_rank()
     results = {}
     for name in args.models:
-        natoms, rate, peak = run_model(name, args.cells, args.steps, args.dim)
+        natoms, rate, peak = run_model(name, args.cells, args.steps, args.dim, args.numbering)
         results[name] = rate
         if rank != 0:
             continue
         if args.json:
             print(json.dumps({"model": name, "particles": natoms, "rate": rate, "dim": args.dim,
-                              "peak_bytes_per_particle": peak}), flush=True)
+                              "numbering": args.numbering, "peak_bytes_per_particle": peak}),
+                  flush=True)
         else:
             print(f"{name:16s} {natoms:8d} particles  {rate:12.4g} particle-steps/s", flush=True)
     if "lattice/bond" in results and rank == 0 and not args.json:

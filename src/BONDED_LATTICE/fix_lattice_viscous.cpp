@@ -16,6 +16,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "output.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
@@ -41,7 +42,7 @@ FixLatticeViscous::FixLatticeViscous(LAMMPS *lmp, int narg, char **arg) :
 
 int FixLatticeViscous::setmask()
 {
-  return POST_FORCE;
+  return POST_FORCE | POST_RUN;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -78,17 +79,34 @@ void FixLatticeViscous::post_force(int /*vflag*/)
 
 void FixLatticeViscous::damp(bool step_taken)
 {
+  // the force is kept only where it is needed: for the heat (trapezoidal in
+  // the old and new force), at the setup, and at the steps a run ends on or a
+  // restart file is written (the next setup reapplies it); elsewhere writing it
+  // would add a third of the loop's memory traffic
+  const bigint step = update->ntimestep;
+  const bool keep = tally_flag || !step_taken || step == update->laststep ||
+      (output->restart_flag && step == output->next_restart);
+  const bool all = (igroup == 0);    // group all: no mask test
   // 2D: x and y only (the z velocity of a 2D particle is zero)
-  if (domain->dimension == 2) damp_components<2>(step_taken);
-  else damp_components<3>(step_taken);
-  fdamp_valid = 1;
+  using Loop = void (FixLatticeViscous::*)(bool);
+  static constexpr Loop LOOPS[8] = {
+      &FixLatticeViscous::damp_components<3, false, false>,
+      &FixLatticeViscous::damp_components<3, false, true>,
+      &FixLatticeViscous::damp_components<3, true, false>,
+      &FixLatticeViscous::damp_components<3, true, true>,
+      &FixLatticeViscous::damp_components<2, false, false>,
+      &FixLatticeViscous::damp_components<2, false, true>,
+      &FixLatticeViscous::damp_components<2, true, false>,
+      &FixLatticeViscous::damp_components<2, true, true>};
+  (this->*LOOPS[4 * (domain->dimension == 2) + 2 * all + keep])(step_taken);
+  fdamp_valid = keep ? 1 : 0;
 }
 
-template <int DIM> void FixLatticeViscous::damp_components(bool step_taken)
+template <int DIM, bool ALL, bool KEEP> void FixLatticeViscous::damp_components(bool step_taken)
 {
-  const auto *const v = reinterpret_cast<const double(*)[3]>(atom->v[0]);
-  auto *const f = reinterpret_cast<double(*)[3]>(atom->f[0]);
-  auto *const h = reinterpret_cast<double(*)[3]>(hist[0]);
+  const double *__restrict const v = atom->v[0];
+  double *__restrict const f = atom->f[0];
+  double *__restrict const h = hist[0];
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   if (nlocal == 0) return;
@@ -97,19 +115,30 @@ template <int DIM> void FixLatticeViscous::damp_components(bool step_taken)
     for (int i = 0; i < nlocal; i++)
       if (mask[i] & groupbit) {
         double wi = 0.0;
-        for (int k = 0; k < DIM; k++) wi += (h[i][k] - eta * v[i][k]) * v[i][k];
+        for (int k = 0; k < DIM; k++) wi += (h[3 * i + k] - eta * v[3 * i + k]) * v[3 * i + k];
         work += wi;
       }
     heat -= 0.5 * update->dt * work;
   }
-  const bool all = (igroup == 0);    // group all: no mask test
+  const double minus_eta = -eta;
   for (int i = 0; i < nlocal; i++) {
-    if (!all && !(mask[i] & groupbit)) continue;
+    if (!ALL && !(mask[i] & groupbit)) continue;
     for (int k = 0; k < DIM; k++) {
-      h[i][k] = -eta * v[i][k];
-      f[i][k] += h[i][k];
+      const double fd = minus_eta * v[3 * i + k];
+      if (KEEP) h[3 * i + k] = fd;
+      f[3 * i + k] += fd;
     }
   }
+}
+
+/* ----------------------------------------------------------------------
+   a run cut short (fix halt, timer timeout) may end on a step whose force
+   was not kept: the next setup then damps with the velocity it has
+------------------------------------------------------------------------- */
+
+void FixLatticeViscous::post_run()
+{
+  if (update->ntimestep != update->laststep && !tally_flag) fdamp_valid = 0;
 }
 
 /* ----------------------------------------------------------------------

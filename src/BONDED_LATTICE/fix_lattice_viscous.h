@@ -22,6 +22,7 @@ class FixLatticeViscous : public FixLatticeAtomHistory {
   int setmask() override;
   void setup(int) override;
   void post_force(int) override;
+  void post_run() override;
 
   void set_arrays(int) override;
   void write_restart(FILE *) override;
@@ -39,7 +40,7 @@ class FixLatticeViscous : public FixLatticeAtomHistory {
   int fdamp_valid;    // 1 once fdamp holds a step's force
 
   void damp(bool step_taken);
-  template <int DIM> void damp_components(bool step_taken);
+  template <int DIM, bool ALL, bool KEEP> void damp_components(bool step_taken);
 };
 
 }    // namespace LAMMPS_NS

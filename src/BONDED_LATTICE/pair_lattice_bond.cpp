@@ -618,6 +618,9 @@ void PairLatticeBond::create_bonds()
   // of one partner in a small periodic box count twice), size the store for
   // the most any atom has (no growth while bonding), then create them
   std::vector<int> count(nlocal, 0);
+  // bonds at either end, counted where both particles are local (interior
+  // particles: exact): half the largest is the room a balanced numbering needs
+  std::vector<int> coordination(nlocal, 0);
   bigint nbond_local = 0;
   // 2D springs are signed lengths: the store holds one component from the start
   if (domain->dimension == 2) fix_store->set_shear_layout(FixLatticeBondStore::SHEAR_PLANAR);
@@ -629,6 +632,8 @@ void PairLatticeBond::create_bonds()
       if (delx * delx + dely * dely + delz * delz >= reach * reach) return;
       if (pass == 0) {
         count[i]++;
+        coordination[i]++;
+        if (j < nlocal) coordination[j]++;
         return;
       }
       // in a small periodic box two images of one partner may be in range
@@ -654,10 +659,25 @@ void PairLatticeBond::create_bonds()
   fix_store->bonds_created = 1;
   // the exact room: contacts add more when they need it
   fix_store->fit_capacity(fix_store->global_max_records());
-  if (comm->me == 0)
+  int most_coord = 0, most_coord_all = 0;
+  for (int i = 0; i < nlocal; i++) most_coord = MAX(most_coord, coordination[i]);
+  MPI_Allreduce(&most_coord, &most_coord_all, 1, MPI_INT, MPI_MAX, world);
+  if (comm->me == 0) {
+    const double mean = atom->natoms ? 2.0 * nbond / atom->natoms : 0.0;
     utils::logmesg(lmp, "pair_style lattice/bond: created {} bonds between {} particles (mean "
-                   "coordination {:.3f})\n", nbond, atom->natoms,
-                   atom->natoms ? 2.0 * nbond / atom->natoms : 0.0);
+                   "coordination {:.3f}); room for {} records per particle, {:.2f} used on "
+                   "average\n", nbond, atom->natoms, mean, fix_store->capacity, 0.5 * mean);
+    // each bond is stored on the lower ID: a numbering that is not row by row
+    // (create_atoms with a multi-atom unit cell) gives some particles more
+    // than half their bonds, and every particle that room
+    const int balanced = (most_coord_all + 1) / 2;
+    if (fix_store->capacity > balanced)
+      utils::logmesg(lmp, "pair_style lattice/bond: the particle numbering gives some particles "
+                     "{} records where {} would do; numbering them row by row (bonded-lattice "
+                     "generate, or create_atoms with a one-atom primitive cell, 'lattice custom') "
+                     "saves memory and time (docs/performance.md)\n", fix_store->capacity,
+                     balanced);
+  }
 }
 
 /* ----------------------------------------------------------------------
