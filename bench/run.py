@@ -33,6 +33,9 @@ HERE = Path(__file__).resolve().parent
 SIZES = {3: {"quick": [(14, 1000)], "full": [(14, 1000), (23, 400), (37, 100)]},
          2: {"quick": [(105, 1000)], "full": [(105, 1000), (235, 400), (470, 100)]}}
 MODELS = ["lattice/bond", "bpm/spring", "bpm/rotational"]
+# lattice/bond variants whose memory differs: the particles numbered by create_atoms'
+# conventional cells instead of row by row (one more record slot per particle)
+MEMORY_VARIANTS = ["lattice/bond:cell-numbering"]
 
 
 def measure(cells: int, steps: int, ranks: int, dim: int, models: list[str]) -> list[dict]:
@@ -90,7 +93,7 @@ def main() -> None:
     if not args.no_memory:
         for dim in (3, 2):
             cells, _ = SIZES[dim]["quick" if args.quick else "full"][-1]
-            for model in MODELS:
+            for model in MODELS + MEMORY_VARIANTS:
                 r = measure(cells, 10, 1, dim, [model])[0]
                 memory[(dim, model)] = (r["particles"], r["peak_bytes_per_particle"])
                 print(f"{dim}D {r['particles']:8d} particles: {model} peak memory "
