@@ -162,6 +162,16 @@ MODELS["lattice/bond:heterogeneous"] = {**MODELS["lattice/bond"], "after": _LB_A
     "set             atom * i_grain v_gid\n"
     "set             atom * d_stiffness v_sf\n"
     "pair_style      lattice/bond stiffness d_stiffness grain i_grain strength 0.5 1.5 seed 7")}
+# atom_style atomic: per-type mass and pair_style lattice/bond diameter D, no per-atom
+# radius, mass, angular velocity or torque (64 bytes less per particle)
+_LB_SPHERE_SIZES = f"set             type 1 diameter {D}\nset             type 1 mass {{mass}}\n"
+assert _LB_SPHERE_SIZES in _LB_AFTER
+MODELS["lattice/bond:atomic"] = {
+    **MODELS["lattice/bond"],
+    "setup": MODELS["lattice/bond"]["setup"].replace("atom_style      sphere",
+                                                     "atom_style      atomic"),
+    "after": _LB_AFTER.replace(_LB_SPHERE_SIZES, "mass            1 {mass}\n").replace(
+        "pair_style      lattice/bond", f"pair_style      lattice/bond diameter {D}")}
 FEATURE_MODELS = ["lattice/bond", "lattice/bond:frictionless", "lattice/bond:no-shear",
                   "lattice/bond:two-types", "lattice/bond+energy", "lattice/bond:corotational",
                   "lattice/bond:heterogeneous"]
