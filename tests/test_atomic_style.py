@@ -63,15 +63,15 @@ set             group half type 2
 {sizes}"""
 
 
-def pair_style(style: str, extra: str = "") -> str:
+def pair_style(style: str) -> str:
     diameter = f" diameter {D}" if style == "atomic" else ""
-    return f"pair_style      lattice/bond{diameter}{extra}\n"
+    return f"pair_style      lattice/bond{diameter}\n"
 
 
 def scene(style: str, dim: int, steps: int = 400) -> str:
-    """A block stretched along y (with noise): tension and shear breaks, contacts."""
+    """A block stretched along y (with noise) whose bottom runs into a moving ylo wall:
+    tension and shear breaks, contacts, wall contacts."""
     vz = "v_vz" if dim == 3 else "NULL"
-    g = "0 -1 0"
     return particles(style, dim) + pair_style(style) + f"""
 pair_coeff      * * {COEFFS[dim]}
 neighbor        {0.1 * D} bin
@@ -82,7 +82,7 @@ velocity        all set v_vx v_vy {vz} units box
 fix             nve all lattice/nve
 fix             damp all lattice/viscous 1.0e-3
 fix             wall all lattice/wall ylo {-0.5 * D} {WALL_KN[dim]} {0.3 * WALL_KN[dim]} 0.3 vel 1.0
-fix             grav all gravity 9.81 vector {g}
+fix             grav all gravity 9.81 vector 0 -1 0
 fix             touch all ave/time 1 1 1 f_wall[5] ave running
 compute         e all lattice/energy work half
 compute         b all lattice/bonds
