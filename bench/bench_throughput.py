@@ -177,9 +177,20 @@ MODELS["lattice/bond:heterogeneous"] = {**MODELS["lattice/bond"], "after": _LB_A
 # the numbering of create_atoms with the conventional cells (lattice/bond stores
 # each bond on the lower ID: some particles get 7 records, 4 in 2D)
 MODELS["lattice/bond:cell-numbering"] = {**MODELS["lattice/bond"], "numbering": "cells"}
+# atom_style atomic: per-type mass and pair_style lattice/bond diameter D, no per-atom
+# radius, mass, angular velocity or torque (64 bytes less per particle)
+_LB_SPHERE_SIZES = f"set             type 1 diameter {D}\nset             type 1 mass {{mass}}\n"
+assert _LB_SPHERE_SIZES in _LB_AFTER
+MODELS["lattice/bond:atomic"] = {
+    **MODELS["lattice/bond"],
+    "setup": MODELS["lattice/bond"]["setup"].replace("atom_style      sphere",
+                                                     "atom_style      atomic"),
+    "after": _LB_AFTER.replace(_LB_SPHERE_SIZES, "mass            1 {mass}\n").replace(
+        "pair_style      lattice/bond", f"pair_style      lattice/bond diameter {D}")}
 FEATURE_MODELS = ["lattice/bond", "lattice/bond:frictionless", "lattice/bond:no-shear",
                   "lattice/bond:two-types", "lattice/bond+energy", "lattice/bond:corotational",
-                  "lattice/bond:heterogeneous", "lattice/bond:cell-numbering"]
+                  "lattice/bond:heterogeneous", "lattice/bond:cell-numbering",
+                  "lattice/bond:atomic"]
 
 
 def build_input(name: str, cells: int, dim: int = 3, numbering: str = "rows") -> str:

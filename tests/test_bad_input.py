@@ -62,7 +62,9 @@ CASES = {
                                   ["keyword shear_frame needs a value"]),
     "cutoff shorter than bonds": (pair(style="cutoff 0.0005"),
                                   ["cutoff 0.0005 is too small", "use cutoff >= 0.00101"]),
-    "wrong atom style": ("", ["requires atom_style sphere"]),
+    # atom_style atomic needs the diameter keyword (tests/test_atomic_style.py)
+    "atomic style without diameter": ("", ["atom_style atomic has no per-atom diameter",
+                                           "keyword diameter"]),
     "newton off": (pair(), ["requires newton on"]),
     "viscous eta negative": (pair() + "fix v all lattice/viscous -3\n", ["eta = -3", "need eta >= 0"]),
     "wall bad face": (pair() + "fix w all lattice/wall top 0 1 1 0\n", ["face top is not valid"]),
@@ -79,7 +81,7 @@ CASES = {
 def test_bad_input_is_rejected_with_named_value(tmp_path, name):
     lines, expected = CASES[name]
     kwargs = {}
-    if name == "wrong atom style":
+    if name == "atomic style without diameter":
         kwargs = dict(atom_style="atomic", setup="mass * 1.0\n")
         lines = pair()
     if name == "newton off":

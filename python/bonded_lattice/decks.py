@@ -45,6 +45,7 @@ from typing import TextIO
 
 from .conversion import BondParameters
 from .grains import GrainPairOptions
+from .lattice import ATOM_STYLES
 
 TESTS = ("tension", "compression", "elastic", "confined")
 SCHEDULES = ("constant", "stepwise")
@@ -79,6 +80,9 @@ class DeckSpec:
     # heterogeneous model: the data file has a Grains section (lattice.write_data) and the
     # pair style reads it; None: homogeneous
     grains: GrainPairOptions | None = None
+    # "atomic": the data file was written with lattice.write_data(..., atom_style="atomic")
+    # (per-type mass) and the pair style gets the diameter (pair_style lattice/bond diameter d)
+    atom_style: str = "sphere"
 
     def __post_init__(self) -> None:
         if self.test not in TESTS:
@@ -90,6 +94,9 @@ class DeckSpec:
         if self.shear_frame not in SHEAR_FRAMES:
             raise ValueError(f"shear_frame = {self.shear_frame!r} is not known: use one of "
                              f"{', '.join(SHEAR_FRAMES)}")
+        if self.atom_style not in ATOM_STYLES:
+            raise ValueError(f"atom_style = {self.atom_style!r} is not supported: use one of "
+                             f"{', '.join(ATOM_STYLES)}")
         if self.schedule not in SCHEDULES:
             raise ValueError(f"schedule = {self.schedule!r} is not known: use one of "
                              f"{', '.join(SCHEDULES)}")
@@ -158,6 +165,8 @@ def _header(spec: DeckSpec) -> str:
     read_data = f"read_data       {spec.data_file}"
     if spec.grains is not None:
         pair_args = " " + spec.grains.pair_style_args() + pair_args
+    if spec.atom_style == "atomic":    # no per-atom diameter: one for every particle
+        pair_args = f" diameter {spec.d!r}" + pair_args
         read_data = (
             "# grain id and stiffness factor per particle, from the data file's Grains section;\n"
             "# ghost yes: the pair style needs them for neighbours owned by other ranks\n"
@@ -171,7 +180,7 @@ def _header(spec: DeckSpec) -> str:
 units           si
 dimension       {spec.dim}
 boundary        {boundary}
-atom_style      sphere
+atom_style      {spec.atom_style}
 newton          on
 {read_data}
 

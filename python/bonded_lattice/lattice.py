@@ -362,10 +362,13 @@ def pairs_within(positions: np.ndarray,
     return i[keep], j[keep], r[keep]
 
 
+ATOM_STYLES = ("sphere", "atomic")    # of write_data; atomic: pair_style lattice/bond diameter D
+
+
 def write_data(lattice: Lattice, path: str | Path, mass: float,
                atom_types: int | None = None, grain: np.ndarray | None = None,
-               stiffness: np.ndarray | None = None) -> None:
-    """Write a LAMMPS data file for ``atom_style sphere``.
+               stiffness: np.ndarray | None = None, atom_style: str = "sphere") -> None:
+    """Write a LAMMPS data file for ``atom_style sphere`` (or ``atomic``).
 
     Atoms are numbered 1..n in the order of ``lattice.positions``; each line is
     ``id type diameter density x y z``.  LAMMPS (version 22 Jul 2025, checked
@@ -374,6 +377,10 @@ def write_data(lattice: Lattice, path: str | Path, mass: float,
     every particle gets exactly ``mass``, in either dimension (in 2D,
     ``mass`` is the mass per unit thickness, e.g. ``rho sqrt(3) d^2 / 2``).
 
+    atom_style: ``"sphere"`` (the default, as above) or ``"atomic"``: a
+        ``Masses`` section gives every atom type ``mass`` and each atom line is
+        ``id type x y z``; the deck then gives the diameter to the pair style,
+        ``pair_style lattice/bond diameter d`` (the same model in less memory).
     atom_types: number of atom types declared in the header (default: the
         largest type used).
     grain, stiffness: per-particle grain ids (integers >= 0) and stiffness
@@ -387,6 +394,9 @@ def write_data(lattice: Lattice, path: str | Path, mass: float,
     mass = float(mass)
     if not mass > 0:
         raise ValueError(f"mass = {mass} is out of range: need mass > 0")
+    if atom_style not in ATOM_STYLES:
+        raise ValueError(f"atom_style = {atom_style!r} is not supported: use one of "
+                         f"{', '.join(ATOM_STYLES)}")
     if (grain is None) != (stiffness is None):
         raise ValueError("grain and stiffness go together (fix property/atom i_grain "
                          "d_stiffness reads both): give both or neither")
@@ -415,12 +425,17 @@ def write_data(lattice: Lattice, path: str | Path, mass: float,
         f"{box[1][0]!r} {box[1][1]!r} ylo yhi",
         f"{box[2][0]!r} {box[2][1]!r} zlo zhi",
         "",
-        "Atoms # sphere",
-        "",
     ]
     types, positions = lattice.types.tolist(), lattice.positions.tolist()
-    body = [f"{k + 1} {t} {d!r} {density!r} {x!r} {y!r} {z!r}"
-            for k, (t, (x, y, z)) in enumerate(zip(types, positions))]
+    if atom_style == "atomic":
+        lines += ["Masses", ""] + [f"{t} {mass!r}" for t in range(1, ntypes + 1)] + [""]
+        lines += ["Atoms # atomic", ""]
+        body = [f"{k + 1} {t} {x!r} {y!r} {z!r}"
+                for k, (t, (x, y, z)) in enumerate(zip(types, positions))]
+    else:
+        lines += ["Atoms # sphere", ""]
+        body = [f"{k + 1} {t} {d!r} {density!r} {x!r} {y!r} {z!r}"
+                for k, (t, (x, y, z)) in enumerate(zip(types, positions))]
     if grain is not None:
         body += ["", GRAINS_SECTION, ""]
         body += [f"{k + 1} {g} {s!r}"

@@ -50,7 +50,7 @@ import numpy as np
 from .conversion import BondParameters, lattice_mass, rock_to_bond
 from .grains import (GrainPairOptions, competent_layer, particle_stiffness,
                      voronoi_grains, voronoi_seeds)
-from .lattice import Lattice, write_data
+from .lattice import ATOM_STYLES, Lattice, write_data
 
 KINDS = ("layer-extension", "layer-compression", "polycrystal", "expanding")
 # how the box deforms: pure shear (the other axis shortens or lengthens to keep the area),
@@ -154,6 +154,9 @@ class Scene:
     output_every: int = 1          # strain steps between scene.dat lines (dynamic: the equivalent)
     bond_dumps: int = 0            # >0: bonds.<step>.txt every this many strain steps
     maxsteps: int = 100000         # per relaxation (lattice/quasistatic maxsteps)
+    # "atomic": per-type mass and pair_style lattice/bond diameter d (less memory); not
+    # for expanding grains, whose particles need their own diameters
+    atom_style: str = "sphere"
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
@@ -166,6 +169,12 @@ class Scene:
         if self.kind == "expanding" and self.deformation != "pure-shear":
             raise ValueError(f"deformation = {self.deformation!r}: growing grains load a box "
                              "whose walls are held; the deformation does not apply")
+        if self.atom_style not in ATOM_STYLES:
+            raise ValueError(f"atom_style = {self.atom_style!r} is not supported: use one of "
+                             f"{', '.join(ATOM_STYLES)}")
+        if self.kind == "expanding" and self.atom_style != "sphere":
+            raise ValueError(f"atom_style = {self.atom_style!r}: growing grains change their "
+                             "particles' diameters, which needs atom_style sphere")
         if self.n_x < 4:
             raise ValueError(f"n_x = {self.n_x} is out of range: need n_x >= 4")
         if self.n_y != 0 and self.n_y < 4:
@@ -394,7 +403,9 @@ def deck_text(scene: Scene, model: SceneModel | None = None,
     fb = b.Kn * b.Xb
     qs = scene.mode == "quasistatic"
     # fix adapt changes radii during a run: only with a dynamic radius (sphere 1)
-    style = "sphere 1" if scene.kind == "expanding" and not qs else "sphere"
+    style = "sphere 1" if scene.kind == "expanding" and not qs else scene.atom_style
+    # atom_style atomic: one diameter for every particle, given to the pair style
+    diameter = f"diameter {d!r} " if scene.atom_style == "atomic" else ""
     head = f"""# Mike/Elle scene: {scene_title(scene)}
 # {scene.n} particles ({scene.n_x} per row, {scene.rows} rows), {scene.mode} loading.
 # Written by bonded_lattice.scenes; run: lmp -in <this file> (or mpirun -np 2 lmp -in ...)
@@ -413,7 +424,7 @@ read_data       {data_file} fix grains NULL Grains
 # bond stiffness: mean of the two particles' factors; strength uniform in
 # [{scene.strength_min:g}, {scene.strength_max:g}),
 # x {scene.boundary_factor:g} across grain boundaries
-pair_style      lattice/bond {scene.pair_options().pair_style_args()}
+pair_style      lattice/bond {diameter}{scene.pair_options().pair_style_args()}
 {b.pair_coeff()}
 neighbor        {0.1 * d:.6g} bin
 neigh_modify    every 1 delay 0 check yes
@@ -580,7 +591,7 @@ def write_scene(scene: Scene, out: str | Path, deck_name: str | None = None) -> 
     out.mkdir(parents=True, exist_ok=True)
     model = build_model(scene)
     write_data(model.lattice, out / DATA_FILE, scene.mass, grain=model.grain,
-               stiffness=model.stiffness)
+               stiffness=model.stiffness, atom_style=scene.atom_style)
     name = deck_name or f"in.{scene.kind}.{scene.mode}"
     (out / name).write_text(deck_text(scene, model))
     return {"deck": str(out / name), "data": str(out / DATA_FILE), "particles": scene.n,

@@ -82,7 +82,7 @@ void ComputeLatticeBonds::compute_vector()
   double local[4] = {0.0, 0.0, 0.0, 0.0};
   if (store && idx) {
     double **x = atom->x;
-    const double *radius = atom->radius;
+    const PairLatticeBond::Radii radius = pair->radii();
     const int *mask = atom->mask;
     const int stride = pair->partner_index_stride();
     for (int i = 0; i < atom->nlocal; i++) {

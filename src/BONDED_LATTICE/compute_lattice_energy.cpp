@@ -95,9 +95,14 @@ void ComputeLatticeEnergy::stored_parts(double *parts)
   double local[3] = {0.0, 0.0, 0.0};
   local[0] = pair ? pair->local_elastic_energy() : 0.0;
   double **v = atom->v;
+  // per-atom masses (atom_style sphere) or per-type ones (mass command)
   const double *rmass = atom->rmass;
-  for (int i = 0; i < atom->nlocal; i++)
-    local[1] += 0.5 * rmass[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+  const double *mass = atom->mass;
+  const int *type = atom->type;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double m = rmass ? rmass[i] : mass[type[i]];
+    local[1] += 0.5 * m * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+  }
   MPI_Allreduce(local, parts, 2, MPI_DOUBLE, MPI_SUM, world);
   // fixes that are already global sums: the walls' springs and gravity
   for (auto *wall : fix->wall_fixes()) parts[0] += wall->compute_scalar();

@@ -160,12 +160,16 @@ void FixLatticeEnergy::set_arrays(int i)
 double FixLatticeEnergy::group_kinetic() const
 {
   double **v = atom->v;
-  const double *rmass = atom->rmass;
+  const double *rmass = atom->rmass;    // per-atom masses, or per-type ones
+  const double *mass = atom->mass;
+  const int *type = atom->type;
   const int *mask = atom->mask;
   double ke = 0.0;
   for (int i = 0; i < atom->nlocal; i++)
-    if (mask[i] & workbit)
-      ke += 0.5 * rmass[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+    if (mask[i] & workbit) {
+      const double m = rmass ? rmass[i] : mass[type[i]];
+      ke += 0.5 * m * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+    }
   return ke;
 }
 

@@ -16,7 +16,9 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "force.h"
 #include "input.h"
+#include "pair_lattice_bond.h"
 #include "update.h"
 #include "variable.h"
 
@@ -30,16 +32,13 @@ using namespace FixConst;
 
 FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
     FixLatticeAtomHistory(lmp, narg, arg), pos_var(-1), vel(0.0), servo(0), servo_force(0.0), servo_gain(0.5),
-    history_ready(0),
+    uniform_radius(0.0), history_ready(0),
     wall_energy(0.0), force_flag(0), tally_flag(0), work(0.0), heat(0.0), fnormal_prev(0.0),
     wall_prev(0.0)
 {
   if (narg < 8)
     error->all(FLERR, "Illegal fix lattice/wall command: expected fix ID group lattice/wall "
                "face position Kn Ks mu [vel v | servo P A [gain g]]");
-
-  if (!atom->radius_flag)
-    error->all(FLERR, "fix lattice/wall requires per-atom radii (atom_style sphere)");
 
   const std::string face = arg[3];
   if (face == "xlo" || face == "xhi") dim = 0;
@@ -167,6 +166,17 @@ void FixLatticeWall::init()
 {
   // variables may have been redefined since the fix was created
   if (!pos_var_name.empty()) find_position_variable();
+  // without per-atom radii (e.g. atom_style atomic) every particle has the
+  // diameter of pair_style lattice/bond (keyword diameter)
+  uniform_radius = 0.0;
+  if (!atom->radius_flag) {
+    auto *pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
+    if (!pair || !(pair->uniform_diameter() > 0.0))
+      error->all(FLERR, "fix lattice/wall needs the particles' radii: per-atom radii (atom_style "
+                 "sphere), or pair_style lattice/bond with the keyword diameter for atom_style {}",
+                 atom->get_style());
+    uniform_radius = 0.5 * pair->uniform_diameter();
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -217,7 +227,7 @@ void FixLatticeWall::apply_forces(bool step_taken)
 {
   double **x = atom->x;
   double **f = atom->f;
-  const double *radius = atom->radius;
+  const double *radius = atom->radius_flag ? atom->radius : nullptr;    // or uniform_radius
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const double wall = position();
@@ -242,7 +252,7 @@ void FixLatticeWall::apply_forces(bool step_taken)
     xprev[2] = x[i][2];
 
     const double h = inward * (x[i][dim] - wall);    // centre's distance inside the wall
-    const double delta = radius[i] - h;
+    const double delta = (radius ? radius[i] : uniform_radius) - h;
     if (delta <= 0.0) {
       if (tally && ks > 0.0)   // a spring left behind by a lost contact lets go
         q += 0.5 * ks * (s[0] * (s[0] + inc[0]) + s[1] * (s[1] + inc[1]) + s[2] * (s[2] + inc[2]));

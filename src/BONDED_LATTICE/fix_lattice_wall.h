@@ -56,6 +56,7 @@ class FixLatticeWall : public FixLatticeAtomHistory {
   int servo;              // 1: the wall moves to hold a normal stress
   double servo_force;     // target normal force (stress x area), compression positive
   double servo_gain;      // fraction of the force error corrected per step
+  double uniform_radius;  // every particle's radius without per-atom radii (init), else 0
 
   // hist[i][0..2]: shear-spring displacement against the wall,
   // hist[i][3..5]: position at the last force evaluation

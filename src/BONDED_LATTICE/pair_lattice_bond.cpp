@@ -84,7 +84,8 @@ static inline double bond_uniform(bigint seed, tagint a, tagint b)
 
 PairLatticeBond::PairLatticeBond(LAMMPS *lmp) :
     Pair(lmp), params(nullptr), bondable(nullptr), coeff_set(nullptr),
-    tolerance(DEFAULT_TOLERANCE), maxslot(DEFAULT_MAXSLOT), cut_user(0.0), cut_global(0.0),
+    tolerance(DEFAULT_TOLERANCE), maxslot(DEFAULT_MAXSLOT), cut_user(0.0), diameter(0.0),
+    cut_global(0.0),
     fix_store(nullptr), partner_idx(nullptr), partner_nmax(0), partner_stride(0), own_map(0), min_radius(0.0), equal_radius(0.0),
     dt_critical(0.0), shear_pairs(SHEAR_PAIRS_SOME),
     any_friction(1), uniform_params(0), tally_flag(0), spin(nullptr), spin_nmax(0),
@@ -147,7 +148,7 @@ void PairLatticeBond::allocate()
 }
 
 /* ----------------------------------------------------------------------
-   pair_style lattice/bond [tolerance t] [maxslot n] [cutoff rc]
+   pair_style lattice/bond [tolerance t] [maxslot n] [cutoff rc] [diameter D]
                            [shear_frame fixed|corotational]
                            [stiffness d_name] [grain i_name]
                            [strength min max] [seed n] [boundary_strength f]
@@ -176,6 +177,12 @@ void PairLatticeBond::settings(int narg, char **arg)
       cut_user = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (cut_user <= 0.0)
         error->all(FLERR, "pair_style lattice/bond cutoff {} must be > 0", cut_user);
+    } else if (key == "diameter") {
+      const double d = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(d > 0.0) || !std::isfinite(d))
+        error->all(FLERR, "pair_style lattice/bond diameter {} is out of range: need a finite "
+                   "diameter > 0 (distance units; the diameter of every particle)", d);
+      diameter = d;
     } else if (key == "shear_frame") {
       const std::string value = arg[iarg + 1];
       if (value == "fixed") shear_frame = SHEAR_FRAME_FIXED;
@@ -215,7 +222,7 @@ void PairLatticeBond::settings(int narg, char **arg)
                    "(a factor of the strength of bonds between different grains)", boundary_strength);
     } else {
       error->all(FLERR, "Unknown pair_style lattice/bond keyword {}: valid are tolerance, maxslot, "
-                 "cutoff, shear_frame, stiffness, grain, strength, seed, boundary_strength", key);
+                 "cutoff, diameter, shear_frame, stiffness, grain, strength, seed, boundary_strength", key);
     }
     iarg += 2;
   }
@@ -276,8 +283,26 @@ void PairLatticeBond::coeff(int narg, char **arg)
 
 void PairLatticeBond::init_style()
 {
-  if (!atom->radius_flag || !atom->rmass_flag)
-    error->all(FLERR, "pair_style lattice/bond requires atom_style sphere (per-atom diameter and mass)");
+  // diameters: per atom (atom_style sphere) or one for all (keyword diameter), never both
+  if (!atom->radius_flag && !(diameter > 0.0))
+    error->all(FLERR, "pair_style lattice/bond: atom_style {} has no per-atom diameter: give the "
+               "particles' diameter with the keyword diameter (pair_style lattice/bond diameter "
+               "D ...), or use atom_style sphere", atom->get_style());
+  if (atom->radius_flag && diameter > 0.0)
+    error->all(FLERR, "pair_style lattice/bond: keyword diameter {} is only for atom styles without "
+               "per-atom diameters (e.g. atom_style atomic). atom_style {} has them: the "
+               "diameters come from the atoms (set ... diameter, or the data file); remove the "
+               "keyword diameter", diameter, atom->get_style());
+  // masses: per atom (atom_style sphere) or per type (mass command)
+  if (!atom->rmass_flag) {
+    if (!atom->mass)
+      error->all(FLERR, "pair_style lattice/bond needs particle masses: atom_style {} has neither "
+                 "per-atom nor per-type masses", atom->get_style());
+    for (int t = 1; t <= atom->ntypes; t++)
+      if (!atom->mass_setflag[t])
+        error->all(FLERR, "pair_style lattice/bond needs particle masses: type {} has no mass; set "
+                   "it with the mass command (mass {} value)", t, t);
+  }
   if (force->newton_pair == 0)
     error->all(FLERR, "pair_style lattice/bond requires newton on (or newton on off): each bond is "
                "computed once and its force reaches the partner by reverse communication");
@@ -311,7 +336,7 @@ void PairLatticeBond::init_style()
 
   // cutoff: the longest bond that can exist (2 * largest radius, plus tolerance)
   const double maxrad = measure_radii();
-  if (atom->natoms > 0 && maxrad <= 0.0)
+  if (atom->natoms > 0 && maxrad <= 0.0 && !(diameter > 0.0))
     error->all(FLERR, "pair_style lattice/bond: all particles have zero diameter; set diameters "
                "(the bond rest length is r_i + r_j)");
   const double cut_auto = 2.0 * maxrad * (1.0 + tolerance);
@@ -449,7 +474,8 @@ PairLatticeBond::BondLoad PairLatticeBond::bond_load(int i, int s, int &mode) co
   double **x = atom->x;
   const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
   load.dist = sqrt(dx * dx + dy * dy + dz * dz);
-  const double xn = load.dist - (atom->radius[i] + atom->radius[j]);
+  const Radii radius = radii();
+  const double xn = load.dist - (radius[i] + radius[j]);
   const bool intact = (fix_store->states(i)[s] == LB_INTACT);
   if (!intact && xn >= 0.0) return load;    // an open contact carries no force
   const BondParams &p = load.p;
@@ -491,11 +517,16 @@ void PairLatticeBond::break_record(int i, int s, int mode)
    largest; sets min_radius (smallest positive radius, instability test) and
    equal_radius.  Equal particles (the lattice model's own case) take a force
    loop without the per-partner radius: equal_radius is their radius, or 0 if
-   radii differ or a fix adapt may change them during a run
+   radii differ or a fix adapt may change them during a run.  With the
+   keyword diameter every particle has radius D/2 (no per-atom radius)
 ------------------------------------------------------------------------- */
 
 double PairLatticeBond::measure_radii()
 {
+  if (diameter > 0.0) {
+    min_radius = equal_radius = 0.5 * diameter;
+    return equal_radius;
+  }
   // max radius, -(smallest positive radius), -(smallest radius)
   double range[3] = {0.0, -BIG, -BIG}, range_all[3];
   for (int i = 0; i < atom->nlocal; i++) {
@@ -509,6 +540,14 @@ double PairLatticeBond::measure_radii()
   const bool adapt = !modify->get_fix_by_style("^adapt").empty();
   equal_radius = (range_all[0] > 0.0 && range_all[0] == -range_all[2] && !adapt) ? range_all[0] : 0.0;
   return range_all[0];
+}
+
+/* ---------------------------------------------------------------------- */
+
+PairLatticeBond::Radii PairLatticeBond::radii() const
+{
+  if (diameter > 0.0) return {nullptr, 0.5 * diameter};
+  return {atom->radius, 0.0};
 }
 
 /* ----------------------------------------------------------------------
@@ -609,7 +648,7 @@ bool PairLatticeBond::has_record_with(int i, tagint partner) const
 void PairLatticeBond::create_bonds()
 {
   double **x = atom->x;
-  double *radius = atom->radius;
+  const Radii radius = radii();
   int *type = atom->type;
   tagint *tag = atom->tag;
   const int nlocal = atom->nlocal;
@@ -688,7 +727,7 @@ void PairLatticeBond::create_bonds()
 void PairLatticeBond::refresh_partners()
 {
   double **x = atom->x;
-  double *radius = atom->radius;
+  const Radii radius = radii();
   tagint *tag = atom->tag;
   const int nlocal = atom->nlocal;
 
@@ -854,7 +893,7 @@ bool PairLatticeBond::shear_vector(int i, int s, double *out) const
 void PairLatticeBond::detect_new_contacts()
 {
   double **x = atom->x;
-  double *radius = atom->radius;
+  const Radii radius = radii();
   tagint *tag = atom->tag;
 
   size_t c = 0;
@@ -912,7 +951,9 @@ void PairLatticeBond::check_time_step()
 {
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
-  const double *rmass = atom->rmass;
+  const double *rmass = atom->rmass;    // per-atom masses, or per-type ones (atom->mass)
+  const double *mass = atom->mass;
+  const int *type = atom->type;
   stiffness_sum.assign(nall, 0.0);
   for (int i = 0; i < nlocal; i++) {
     const int *idx = partner_idx + (bigint) i * partner_stride;
@@ -928,8 +969,10 @@ void PairLatticeBond::check_time_step()
   comm_what = COMM_STIFFNESS;
   comm->reverse_comm(this);
   double lambda_local = 0.0, lambda = 0.0;
-  for (int i = 0; i < nlocal; i++)
-    if (rmass[i] > 0.0) lambda_local = MAX(lambda_local, 2.0 * stiffness_sum[i] / rmass[i]);
+  for (int i = 0; i < nlocal; i++) {
+    const double m = rmass ? rmass[i] : mass[type[i]];
+    if (m > 0.0) lambda_local = MAX(lambda_local, 2.0 * stiffness_sum[i] / m);
+  }
   MPI_Allreduce(&lambda_local, &lambda, 1, MPI_DOUBLE, MPI_MAX, world);
   dt_critical = (lambda > 0.0) ? 2.0 / sqrt(lambda) : 0.0;
   if (dt_critical <= 0.0) return;
@@ -1053,9 +1096,11 @@ int PairLatticeBond::scene_features() const
   const int planar = (domain->dimension == 2) ? LB_PLANAR : 0;
   const int corotate = corotational() ? LB_COROTATE : 0;
   const int hetero = hetero_flag ? LB_HETERO : 0;
+  // with the keyword diameter there is no per-atom radius to read: equal particles always
+  const int equal = (diameter > 0.0) ? LB_EQUAL : 0;
   if (evflag)
     return LB_EV | LB_SHEAR_SOME | LB_FRICTION | planar | (tally_flag ? LB_TALLY : 0) | corotate |
-        hetero;
+        hetero | equal;
   int features = planar | (tally_flag ? LB_TALLY : 0) | corotate | hetero;
   if (uniform_params) features |= LB_UNIFORM;
   if (shear_pairs == SHEAR_PAIRS_ALL) features |= LB_SHEAR_ALL;
@@ -1067,12 +1112,14 @@ int PairLatticeBond::scene_features() const
 
 /* one entry per feature combination: steps with energy/virial tallies
    (thermo output), and the combination that never occurs (both shear bits),
-   use the general loop; heat tallies are specialised like plain steps */
+   use the general loop (for equal particles with the keyword diameter, which
+   leaves no per-atom radius to read); heat tallies are specialised like plain
+   steps */
 
 template <int F> constexpr PairLatticeBond::EvalFn PairLatticeBond::eval_entry()
 {
-  constexpr int GENERAL =
-      LB_SHEAR_SOME | LB_FRICTION | (F & (LB_EV | LB_TALLY | LB_PLANAR | LB_COROTATE | LB_HETERO));
+  constexpr int GENERAL = LB_SHEAR_SOME | LB_FRICTION |
+      (F & (LB_EV | LB_TALLY | LB_PLANAR | LB_COROTATE | LB_HETERO | LB_EQUAL));
   constexpr bool both_shear = (F & LB_SHEAR_ALL) && (F & LB_SHEAR_SOME);
   // without shear springs there is nothing to corotate (corotational() is false)
   constexpr bool idle_corotate = (F & LB_COROTATE) && !(F & (LB_SHEAR_ALL | LB_SHEAR_SOME | LB_EV));
@@ -1735,7 +1782,7 @@ double PairLatticeBond::local_elastic_energy() const
 {
   if (!fix_store || !partner_idx) return 0.0;
   double **x = atom->x;
-  const double *radius = atom->radius;
+  const Radii radius = radii();
   double energy = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     const LatticeBondState *st = fix_store->states(i);
@@ -1758,10 +1805,10 @@ double PairLatticeBond::local_elastic_energy() const
 /* ----------------------------------------------------------------------
    settings: tolerance, then a negative settings format (files before the
    shear_frame keyword have maxslot >= 1 there), maxslot, cutoff, shear_frame;
-   format 3 adds the heterogeneity keywords
+   format 3 adds the heterogeneity keywords, format 4 the keyword diameter
 ------------------------------------------------------------------------- */
 
-static constexpr int SETTINGS_FORMAT = 3;
+static constexpr int SETTINGS_FORMAT = 4;
 
 static void write_string(FILE *fp, const std::string &text)
 {
@@ -1784,6 +1831,7 @@ void PairLatticeBond::write_restart_settings(FILE *fp)
   const double range[3] = {strength_min, strength_max, boundary_strength};
   fwrite(range, sizeof(double), 3, fp);
   fwrite(&strength_seed, sizeof(bigint), 1, fp);
+  fwrite(&diameter, sizeof(double), 1, fp);
 }
 
 /* ----------------------------------------------------------------------
@@ -1815,16 +1863,16 @@ void PairLatticeBond::read_restart_settings(FILE *fp)
     if (word > 0) {    // format 1: maxslot, cutoff; the papers' shear frame
       maxslot = word;
       shear_frame = SHEAR_FRAME_FIXED;
-    } else if (word == -2 || word == -3) {
+    } else if (word <= -2 && word >= -SETTINGS_FORMAT) {
       utils::sfread(FLERR, &maxslot, sizeof(int), 1, fp, nullptr, error);
     }
-    if (word > 0 || word == -2 || word == -3)
+    if (word > 0 || (word <= -2 && word >= -SETTINGS_FORMAT))
       utils::sfread(FLERR, &cut_user, sizeof(double), 1, fp, nullptr, error);
-    if (word == -2 || word == -3)
+    if (word <= -2 && word >= -SETTINGS_FORMAT)
       utils::sfread(FLERR, &shear_frame, sizeof(int), 1, fp, nullptr, error);
   }
   MPI_Bcast(&word, 1, MPI_INT, 0, world);
-  if (word <= 0 && word != -2 && word != -3)
+  if (word <= 0 && !(word <= -2 && word >= -SETTINGS_FORMAT))
     error->all(FLERR, "This restart file holds pair_style lattice/bond settings in format {} "
                "(a newer BONDED_LATTICE version); this version reads formats 1 to {}", -word,
                SETTINGS_FORMAT);
@@ -1835,7 +1883,7 @@ void PairLatticeBond::read_restart_settings(FILE *fp)
   strength_min = strength_max = 1.0;
   boundary_strength = DEFAULT_BOUNDARY_STRENGTH;
   strength_seed = 0;
-  if (word == -3) {
+  if (word <= -3) {
     if (comm->me == 0) utils::sfread(FLERR, &hetero_flag, sizeof(int), 1, fp, nullptr, error);
     MPI_Bcast(&hetero_flag, 1, MPI_INT, 0, world);
     stiffness_name = read_string(lmp, fp);
@@ -1850,6 +1898,12 @@ void PairLatticeBond::read_restart_settings(FILE *fp)
     strength_min = range[0];
     strength_max = range[1];
     boundary_strength = range[2];
+  }
+  // format 4: the keyword diameter; older files come from atom_style sphere
+  diameter = 0.0;
+  if (word <= -4) {
+    if (comm->me == 0) utils::sfread(FLERR, &diameter, sizeof(double), 1, fp, nullptr, error);
+    MPI_Bcast(&diameter, 1, MPI_DOUBLE, 0, world);
   }
   MPI_Bcast(&tolerance, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&maxslot, 1, MPI_INT, 0, world);

@@ -98,6 +98,17 @@ class PairLatticeBond : public Pair {
   bool has_shear_springs() const;    // some type pair has Ks > 0
   double smallest_radius() const { return min_radius; }
 
+  // the particles' radii: per atom (atom_style sphere), or D/2 for all with the
+  // keyword diameter D (atom styles without per-atom radius).  Loops fetch radii()
+  // once: the pointer test inside is then the same for every particle
+  struct Radii {
+    const double *per_atom;    // atom->radius, or nullptr
+    double all;                // every particle's radius when per_atom is null
+    double operator[](int i) const { return per_atom ? per_atom[i] : all; }
+  };
+  Radii radii() const;
+  double uniform_diameter() const { return diameter; }    // keyword diameter, 0 if not given
+
  protected:
   BondParams **params;
   int **bondable;      // 1 if touching particles of this type pair are bonded at the first run
@@ -105,6 +116,7 @@ class PairLatticeBond : public Pair {
   double tolerance;    // bond if r < (ri + rj)(1 + tolerance) at the first run
   int maxslot;         // records per atom
   double cut_user;     // cutoff keyword, 0 = automatic
+  double diameter;     // diameter keyword: every particle's diameter, 0 = per-atom radii
   double cut_global;
   // shear_frame keyword: increments of the shear springs measured in the fixed
   // frame (the papers) or relative to each particle's local rigid rotation
