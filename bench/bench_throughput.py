@@ -112,16 +112,17 @@ bond_style      {bond_lines}
 
 
 MODELS = {
+    # equal particles as bonded-lattice writes them: atom_style atomic, a mass per
+    # type, the diameter given to the pair style
     "lattice/bond": dict(
         box_args="1 box",
         setup="""
-atom_style      sphere
+atom_style      atomic
 newton          on
 """,
         after=f"""
-set             type 1 diameter {D}
-set             type 1 mass {{mass}}
-pair_style      lattice/bond
+mass            1 {{mass}}
+pair_style      lattice/bond diameter {D}
 pair_coeff      1 1 {{kn}} {{ks}} {{xb}} {{fs0}} {{mup}}
 """,
         damping="lattice/viscous 0.05",
@@ -159,7 +160,7 @@ MODELS["lattice/bond:two-types"] = {
     **MODELS["lattice/bond"], "box_args": "2 box",
     "after": _LB_AFTER.replace("pair_coeff      1 1", "pair_coeff      * *")
     + "group           half id <= $(floor(count(all)/2))\nset             group half type 2\n"
-    + "set             type 2 diameter " + str(D) + "\nset             type 2 mass {mass}\n"
+    + "mass            2 {mass}\n"
     + "pair_coeff      2 2 {kn} {ks} $({xb}*1.0000001) {fs0} {mup}\n"}
 # shear measured relative to each particle's local rigid rotation (a pre-pass fits it)
 MODELS["lattice/bond:corotational"] = {**MODELS["lattice/bond"], "after": _LB_AFTER.replace(
@@ -177,20 +178,22 @@ MODELS["lattice/bond:heterogeneous"] = {**MODELS["lattice/bond"], "after": _LB_A
 # the numbering of create_atoms with the conventional cells (lattice/bond stores
 # each bond on the lower ID: some particles get 7 records, 4 in 2D)
 MODELS["lattice/bond:cell-numbering"] = {**MODELS["lattice/bond"], "numbering": "cells"}
-# atom_style atomic: per-type mass and pair_style lattice/bond diameter D, no per-atom
-# radius, mass, angular velocity or torque (64 bytes less per particle)
-_LB_SPHERE_SIZES = f"set             type 1 diameter {D}\nset             type 1 mass {{mass}}\n"
-assert _LB_SPHERE_SIZES in _LB_AFTER
-MODELS["lattice/bond:atomic"] = {
+# atom_style sphere: a diameter and a mass per particle, and the angular velocity and
+# torque arrays the model does not use (64 bytes more per particle, torques cleared)
+_LB_ATOMIC_SIZES = "mass            1 {mass}\n"
+assert _LB_ATOMIC_SIZES in _LB_AFTER
+MODELS["lattice/bond:sphere"] = {
     **MODELS["lattice/bond"],
-    "setup": MODELS["lattice/bond"]["setup"].replace("atom_style      sphere",
-                                                     "atom_style      atomic"),
-    "after": _LB_AFTER.replace(_LB_SPHERE_SIZES, "mass            1 {mass}\n").replace(
-        "pair_style      lattice/bond", f"pair_style      lattice/bond diameter {D}")}
+    "setup": MODELS["lattice/bond"]["setup"].replace("atom_style      atomic",
+                                                     "atom_style      sphere"),
+    "after": _LB_AFTER.replace(
+        _LB_ATOMIC_SIZES,
+        f"set             type 1 diameter {D}\nset             type 1 mass {{mass}}\n").replace(
+        f"pair_style      lattice/bond diameter {D}", "pair_style      lattice/bond")}
 FEATURE_MODELS = ["lattice/bond", "lattice/bond:frictionless", "lattice/bond:no-shear",
                   "lattice/bond:two-types", "lattice/bond+energy", "lattice/bond:corotational",
                   "lattice/bond:heterogeneous", "lattice/bond:cell-numbering",
-                  "lattice/bond:atomic"]
+                  "lattice/bond:sphere"]
 
 
 def build_input(name: str, cells: int, dim: int = 3, numbering: str = "rows") -> str:

@@ -35,8 +35,8 @@ SIZES = {3: {"quick": [(14, 1000)], "full": [(14, 1000), (23, 400), (37, 100)]},
 MODELS = ["lattice/bond", "bpm/spring", "bpm/rotational"]
 # lattice/bond variants whose memory differs: the particles numbered by create_atoms'
 # conventional cells instead of row by row (one more record slot per particle), and
-# atom_style atomic (no per-atom radius, mass, angular velocity, torque)
-MEMORY_VARIANTS = ["lattice/bond:cell-numbering", "lattice/bond:atomic"]
+# atom_style sphere (per-atom radius, mass, angular velocity, torque)
+MEMORY_VARIANTS = ["lattice/bond:cell-numbering", "lattice/bond:sphere"]
 
 
 def measure(cells: int, steps: int, ranks: int, dim: int, models: list[str]) -> list[dict]:

@@ -117,3 +117,50 @@ run 10
 """)
     assert counts(lmp)[0] == 0 and counts(lmp)[1] == 1
     assert counts(lmp)[3] == 1
+
+
+NUMBERINGS = {
+    # create_atoms numbers cell by cell: with the conventional cells (fcc 4 atoms, hex 2)
+    # the interior particles of some basis sites own 7 (3D) / 4 (2D) of their 12 / 6
+    # bonds at higher IDs; a one-atom primitive cell gives every interior particle 6 / 3
+    ("3d", "cells"): ("lattice fcc $(sqrt(2)*1e-3)", 7, True),
+    ("3d", "rows"): ("lattice custom $(sqrt(2)*1e-3) a1 0.5 0.5 0 a2 0.5 0 0.5 a3 0 0.5 0.5 "
+                     "basis 0 0 0", 6, False),
+    ("2d", "cells"): ("lattice hex 1e-3", 4, True),
+    ("2d", "rows"): ("lattice custom 1e-3 a1 1 0 0 a2 0.5 $(sqrt(3)/2) 0 a3 0 0 1 basis 0 0 0",
+                     3, False),
+}
+
+
+@pytest.mark.parametrize("dim,numbering", list(NUMBERINGS))
+def test_record_room_follows_the_numbering(tmp_path, dim, numbering):
+    """The log states each particle's room for records (each bond is stored on the lower
+    ID) and, for a numbering that wastes it, how much room a balanced one needs."""
+    from conftest import run_deck
+
+    lattice, room, hint = NUMBERINGS[(dim, numbering)]
+    three = dim == "3d"
+    deck = f"""
+units           si
+dimension       {3 if three else 2}
+boundary        f f {"f" if three else "p"}
+atom_style      atomic
+newton          on
+lattice         {"fcc $(sqrt(2)*1e-3)" if three else "hex 1e-3"}
+region          box block -1 9 -1 9 {"-1 9" if three else "-0.5 0.5"}
+create_box      1 box
+region          block block 0 7.9 0 7.9 {"0 7.9" if three else "-0.5 0.5"}
+{lattice}
+create_atoms    1 region block
+mass            1 1e-6
+pair_style      lattice/bond diameter 1e-3
+pair_coeff      1 1 {QUARTZ_2D}
+neighbor        1e-4 bin
+run             0
+"""
+    res = run_deck(deck, tmp_path)
+    assert res.returncode == 0, res.output[-2000:]
+    assert f"room for {room} records per particle" in res.output
+    assert ("records where" in res.output) == hint
+    if hint:
+        assert f"gives some particles {room} records where {room - 1} would do" in res.output

@@ -547,8 +547,10 @@ def test_generate_command_writes_a_heterogeneous_block(tmp_path, capsys):
     assert np.array_equal(stiffness, grain_stiffness(8, 1.0, 0.2, 21)[grain])
     deck = (out / "in.tension").read_text()
     assert "read_data       data.lattice fix grains NULL Grains" in deck
+    # equal particles: atom_style atomic, the diameter given to the pair style
     assert ("lattice/bond grain i_grain stiffness d_stiffness strength 0.5 1.5 seed 21 "
-            "boundary_strength 0.4\n") in deck
+            f"boundary_strength 0.4 diameter {D!r}\n") in deck
+    assert "atom_style      atomic\n" in deck
     assert "8 grains of" in capsys.readouterr().out
     # bad input: the message names the value, exit status 2
     assert main(["generate", "--dim", "2", "--n", "15", "--grains", "8", "--boundary-strength",

@@ -117,7 +117,8 @@ def calibrate(rock: Rock, dim: int, n: int, out: str | Path, np_: int = 2,
     tol: relative tolerance per property (default 1%, inside the 2% goal);
     max_runs: test runs per stage at most; progress: print one line per run;
     plan_options: loading options of
-    :func:`bonded_lattice.experiment.plan_test` (schedule, crossings, ...).
+    :func:`bonded_lattice.experiment.plan_test` (schedule, crossings, ...) and
+    ``atom_style`` of :func:`bonded_lattice.experiment.run_test`.
     Writes each run into ``out/<stage>_<k>`` and the result to ``out/calibration.json``.
     Raises ValueError when a needed input leaves the lattice's valid range.
     """

@@ -63,9 +63,11 @@ def cmd_generate(args: argparse.Namespace) -> int:
         from .grains import grain_arrays
 
         grain, stiffness = grain_arrays(lattice.positions, lattice.d, model)
-    write_data(lattice, out / "data.lattice", plan.mass, grain=grain, stiffness=stiffness)
+    write_data(lattice, out / "data.lattice", plan.mass, grain=grain, stiffness=stiffness,
+               atom_style=args.atom_style)
     write_deck(deck_spec(plan, args.test, args.dim, bond, args.confining, args.dump_every,
-                         has_mid_height(lattice), args.energy, args.shear_frame, pair),
+                         has_mid_height(lattice), args.energy, args.shear_frame, pair,
+                         atom_style=args.atom_style),
                out / f"in.{args.test}")
     print(f"wrote {out / 'data.lattice'} ({lattice.n} particles) and {out / ('in.' + args.test)}")
     if grain is not None:
@@ -83,7 +85,8 @@ def cmd_run(args: argparse.Namespace) -> int:
     summary = run_test(_rock(args), args.dim, args.test, args.n, args.out, np_=args.np,
                        d=args.d, progress=not args.quiet, dump_every=args.dump_every,
                        orientation=args.orientation, energy=args.energy,
-                       shear_frame=args.shear_frame, **_plan_options(args))
+                       shear_frame=args.shear_frame, atom_style=args.atom_style,
+                       **_plan_options(args))
     print(summary_table(summary))
     if summary["energy"]:
         e = summary["energy"]
@@ -111,7 +114,7 @@ def cmd_envelope(args: argparse.Namespace) -> int:
         options = {**_plan_options(args), "confining": p}
         summary = run_test(rock, args.dim, "confined", args.n, Path(args.out) / f"confined_{p:g}",
                            np_=args.np, d=args.d, progress=not args.quiet,
-                           orientation=args.orientation, **options)
+                           orientation=args.orientation, atom_style=args.atom_style, **options)
         peaks.append(summary["measured"]["sigma1"])
         print(f"sigma3 = {p / 1e6:8.3f} MPa   sigma1 = {peaks[-1] / 1e6:9.3f} MPa "
               f"(Coulomb target {summary['target']['sigma1'] / 1e6:9.3f} MPa)")
@@ -126,7 +129,7 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
 
     result = calibrate(_rock(args), args.dim, args.n, args.out, np_=args.np, d=args.d,
                        tol=args.tol, max_runs=args.max_runs, progress=not args.quiet,
-                       orientation=args.orientation,
+                       orientation=args.orientation, atom_style=args.atom_style,
                        **{k: v for k, v in _plan_options(args).items() if k != "confining"})
     print(calibration_table(result))
     print(f"details in {Path(args.out) / 'calibration.json'}")
@@ -161,7 +164,8 @@ def _scene(args: argparse.Namespace):
                  n_steps=args.steps, ftol=args.ftol, crossings=args.crossings,
                  damping=args.damping, output_every=args.output_every,
                  bond_dumps=args.bond_dumps, dt_fraction=args.dt_fraction,
-                 deformation=args.deformation)
+                 deformation=args.deformation,
+                 atom_style=args.atom_style or ("sphere" if args.kind == "expanding" else "atomic"))
 
 
 def cmd_scene(args: argparse.Namespace) -> int:
@@ -301,6 +305,10 @@ def _common(p: argparse.ArgumentParser, test: bool = True, choose_test: bool = T
         p.add_argument("--shear-frame", choices=("fixed", "corotational"), default="fixed",
                        help="pair_style lattice/bond shear_frame: fixed (the papers', default) "
                        "or corotational (shear relative to the local rigid rotation)")
+        p.add_argument("--atom-style", choices=("atomic", "sphere"), default="atomic",
+                       help="atomic (default: equal particles, per-type mass, pair_style "
+                       "lattice/bond diameter D; 64 bytes less per particle) or sphere "
+                       "(per-particle diameter and mass)")
         p.add_argument("--dump-every", type=int, default=0,
                        help="write dump.lammpstrj every this many steps (0: only the first "
                        "and last configurations)")
@@ -406,6 +414,9 @@ def main(argv: list[str] | None = None) -> int:
                    help="strain steps between lines of scene.dat (dynamic; default 1)")
     p.add_argument("--bond-dumps", type=int, default=0,
                    help="dump the bond records every this many strain steps (0: only at the end)")
+    p.add_argument("--atom-style", choices=("atomic", "sphere"), default=None,
+                   help="atomic (equal particles, per-type mass; default) or sphere (default "
+                   "and required for expanding, whose grains change their diameters)")
     p.add_argument("--run", action="store_true", help="run it, measure and plot")
     p.add_argument("--out", default="scene", help="output folder")
     _running(p)

@@ -163,10 +163,10 @@ def _header(spec: DeckSpec) -> str:
     boundary = "f f p" if spec.dim == 2 else "f f f"
     pair_args = "" if spec.shear_frame == "fixed" else " shear_frame " + spec.shear_frame
     read_data = f"read_data       {spec.data_file}"
-    if spec.grains is not None:
-        pair_args = " " + spec.grains.pair_style_args() + pair_args
     if spec.atom_style == "atomic":    # no per-atom diameter: one for every particle
         pair_args = f" diameter {spec.d!r}" + pair_args
+    if spec.grains is not None:
+        pair_args = " " + spec.grains.pair_style_args() + pair_args
         read_data = (
             "# grain id and stiffness factor per particle, from the data file's Grains section;\n"
             "# ghost yes: the pair style needs them for neighbours owned by other ranks\n"

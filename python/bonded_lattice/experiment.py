@@ -211,13 +211,16 @@ def has_mid_height(lattice: Lattice) -> bool:
 def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
               confining: float = 0.0, dump_every: int = 0, gauges: bool = True,
               energy: bool = False, shear_frame: str = "fixed",
-              grains: GrainPairOptions | None = None) -> DeckSpec:
+              grains: GrainPairOptions | None = None,
+              atom_style: str = "atomic") -> DeckSpec:
     """The deck of a planned run (reads ``data.lattice`` beside it).
 
     grains: the pair style's grain keywords of a heterogeneous block, whose
     data file has a Grains section (:func:`bonded_lattice.grains.grain_arrays`).
+    atom_style: that of the data file (:func:`bonded_lattice.lattice.write_data`).
     """
     return DeckSpec(gauges=gauges, energy=energy, shear_frame=shear_frame, grains=grains,
+                    atom_style=atom_style,
                     test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
                     area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps,
                     dt=plan.dt, thermo_every=plan.thermo_every, confining=confining,
@@ -234,11 +237,13 @@ def lattice_n_across(lattice: Lattice) -> int:
 def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int = 2,
              d: float = 1.0e-3, progress: bool = True, bond: BondParameters | None = None,
              dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
-             shear_frame: str = "fixed", **plan_options) -> dict:
+             shear_frame: str = "fixed", atom_style: str = "atomic", **plan_options) -> dict:
     """Run one test end to end and return the summary (also written to summary.json).
 
     shear_frame: ``fixed`` (the papers') or ``corotational`` (shear measured relative to
         each particle's local rigid rotation; pair_style lattice/bond keyword shear_frame).
+    atom_style: ``atomic`` (equal particles: per-type mass, the pair style's diameter;
+        the default, 64 bytes less per particle than ``sphere``) or ``sphere``.
 
     bond: bond parameters to use instead of the rock's converted ones (calibration);
         the targets stay the rock's properties.
@@ -252,12 +257,12 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
         bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, d, dim)
     lattice = build_lattice(dim, n, d, orientation)
     plan = plan_test(rock, bond, lattice, test, **plan_options)
-    write_data(lattice, out / "data.lattice", plan.mass)
+    write_data(lattice, out / "data.lattice", plan.mass, atom_style=atom_style)
     if dump_every > 0:   # frames on thermo rows, so each frame has its stress
         dump_every = plan.thermo_every * max(1, round(dump_every / plan.thermo_every))
     deck = out / f"in.{test}"
     write_deck(deck_spec(plan, test, dim, bond, confining, dump_every, has_mid_height(lattice),
-                         energy, shear_frame), deck)
+                         energy, shear_frame, atom_style=atom_style), deck)
     result: RunResult = run_deck(deck, out, np_=np_, total_steps=plan.steps, progress=progress)
     if result.returncode != 0:
         raise RuntimeError(f"LAMMPS failed in {out}: {result.error}")
