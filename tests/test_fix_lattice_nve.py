@@ -6,9 +6,13 @@ nve (plus fix enforce2d in 2D) takes it, with damping on part of the block."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from test_kernel_variants import SHAKE, D, scene_opening, KN2, KS2, XB2, FS2, MU2, KN3, KS3, XB3, FS3, MU3
+
+ROOT = Path(__file__).resolve().parent.parent
 
 COEFFS = {2: f"* * {KN2} {KS2} {XB2} {FS2} {MU2}", 3: f"* * {KN3} {KS3} {XB3} {FS3} {MU3}"}
 
@@ -82,3 +86,32 @@ run             100
     expected_z = np.array([5.0, 8.0]) + 0.25 * t - 0.5 * 9.81 * t ** 2
     assert np.allclose(x[:, 0], np.array([1.0, 5.0]) + t, rtol=0, atol=1e-12)
     assert np.allclose(x[:, 2], expected_z, rtol=0, atol=1e-12)
+
+
+def test_measured_displacements_give_the_same_bits(tmp_path):
+    """fix lattice/nve on every atom measures each step's displacements while it
+    moves the atoms, and the record store skips its own pass; any other fix that
+    may move atoms (here a fix nve on an empty group) brings the pass back.  Both
+    give the same bits through elastic loading and fracture (2D tension deck)."""
+    from conftest import run_deck
+
+    deck = (ROOT / "inputs" / "in.tension2d").read_text()
+    dump = ("write_dump      all custom final.dump id x y vx vy c_bonds_per_atom "
+            "modify sort id format float %.17g\n")
+    deck = deck.replace("compute         bonds all lattice/bonds\n",
+                        "compute         bonds all lattice/bonds\n"
+                        "compute         bonds_per_atom all lattice/bonds\n") + dump
+    args = ["-var", "N", "15", "-var", "vpull", "0.02", "-var", "steps", "4600"]
+    measured = run_deck(deck, tmp_path / "measured", args=args)
+    idle = "group           idle empty\nfix             idle idle nve\n"
+    passed = run_deck(deck.replace("fix             integrate all lattice/nve\n",
+                                   "fix             integrate all lattice/nve\n" + idle),
+                      tmp_path / "pass", args=args)
+    assert measured.returncode == 0 and passed.returncode == 0, passed.output[-2000:]
+    assert "measures the steps" in measured.output
+    assert "measures the steps" not in passed.output
+    a = (tmp_path / "measured" / "final.dump").read_text()
+    b = (tmp_path / "pass" / "final.dump").read_text()
+    assert a == b
+    broken = measured.thermo[-1]["c_bonds[2]"][-1]
+    assert broken > 0, "the run must reach fracture"

@@ -51,24 +51,28 @@ BALANCE = "fix             lb all balance 500 1.05 shift x 10 1.05\n"
 
 
 @pytest.mark.mpi
-@pytest.mark.parametrize("np_,balance,frame", [(2, False, "fixed"), (3, False, "fixed"),
-                                               (4, False, "fixed"), (4, True, "fixed"),
-                                               (2, False, "corotational"),
-                                               (3, False, "corotational")])
-def test_drift_around_periodic_box(tmp_path, np_, balance, frame):
+@pytest.mark.parametrize("np_,balance,frame,integrator", [
+    (2, False, "fixed", "nve"), (3, False, "fixed", "nve"), (4, False, "fixed", "nve"),
+    (4, True, "fixed", "nve"), (2, False, "corotational", "nve"),
+    (3, False, "corotational", "nve"),
+    (2, False, "fixed", "lattice/nve"), (4, True, "fixed", "lattice/nve"),
+    (3, False, "corotational", "lattice/nve")])
+def test_drift_around_periodic_box(tmp_path, np_, balance, frame, integrator):
     """Also with more ranks than cores (4 on the 2-core machine), with fix balance
-    moving the subdomain boundaries while the block drifts through them, and with the
+    moving the subdomain boundaries while the block drifts through them, with the
     corotational shear frame (its rotation fit sums ghosts' terms across subdomain and
-    periodic boundaries)."""
+    periodic boundaries), and with fix lattice/nve, which measures each step's
+    displacements while it moves the atoms (they migrate with their atoms)."""
     # 4 ranks on 2 cores are slow (busy-waiting MPI): the same trip in fewer, longer steps
     steps = "1000" if np_ > 2 else "5000"
-    plain = DECK.replace("STEPS", steps)
+    plain = DECK.replace("STEPS", steps).replace("fix             nve all nve\n",
+                                                 f"fix             nve all {integrator}\n")
     if frame != "fixed":
         plain = plain.replace("pair_style      lattice/bond\n",
                               f"pair_style      lattice/bond shear_frame {frame}\n")
         assert frame in plain
-    deck = plain.replace("fix             nve all nve\n",
-                         "fix             nve all nve\n" + (BALANCE if balance else ""))
+    deck = plain.replace(f"fix             nve all {integrator}\n",
+                         f"fix             nve all {integrator}\n" + (BALANCE if balance else ""))
     one = run_deck(plain, tmp_path / "one")
     many = run_deck(deck, tmp_path / "many", np=np_)
     assert one.returncode == 0 and many.returncode == 0, many.output[-2000:]

@@ -19,6 +19,7 @@
 #include "error.h"
 #include "fix_lattice_atom_history.h"
 #include "memory.h"
+#include "update.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,7 +36,8 @@ static constexpr int CAPACITY_STEP = 2;    // small steps: memory follows need
 FixLatticeBondStore::FixLatticeBondStore(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), nrec(nullptr), ncomp(3), spring(nullptr), partner(nullptr),
     state(nullptr), xlast(nullptr), disp(nullptr),
-    bonds_created(0), shear_layout(SHEAR_VECTOR), nmax_store(0)
+    bonds_created(0), step_limit(0.0), shear_layout(SHEAR_VECTOR), integrated_step(-1),
+    integrated_ok(1), nmax_store(0)
 {
   if (narg != 4) error->all(FLERR, "Illegal fix {} command: expected one argument (maxslot)", style);
   maxslot = utils::inumeric(FLERR, arg[3], false, lmp);
@@ -45,7 +47,7 @@ FixLatticeBondStore::FixLatticeBondStore(LAMMPS *lmp, int narg, char **arg) :
   restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
-  maxexchange = ATOM_DOUBLES + maxslot * RECORD_DOUBLES;
+  maxexchange = EXCHANGE_DOUBLES + maxslot * RECORD_DOUBLES;
 
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -69,7 +71,35 @@ FixLatticeBondStore::~FixLatticeBondStore()
 
 int FixLatticeBondStore::setmask()
 {
-  return 0;
+  return POST_RUN;
+}
+
+/* ----------------------------------------------------------------------
+   fix lattice/nve moved every atom this step and measured the displacements
+   as it went (see mark_integrated); the last positions become the current
+   ones when the run ends, so that a following run, minimisation or restart
+   file sees no step
+------------------------------------------------------------------------- */
+
+void FixLatticeBondStore::mark_integrated(bool ok)
+{
+  integrated_step = update->ntimestep;
+  integrated_ok = ok ? 1 : 0;
+}
+
+bool FixLatticeBondStore::integrated() const
+{
+  return integrated_step == update->ntimestep;
+}
+
+void FixLatticeBondStore::post_run()
+{
+  if (integrated()) {
+    double **x = atom->x;
+    for (int i = 0; i < atom->nlocal; i++)
+      for (int k = 0; k < 3; k++) xlast[i][k] = x[i][k];
+  }
+  integrated_step = -1;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -202,7 +232,7 @@ void FixLatticeBondStore::set_maxslot(int n)
     error->all(FLERR, "pair_style lattice/bond maxslot {} is too small: an atom holds {} bonds "
                "and contacts; use maxslot >= {}", n, most_all, most_all);
   maxslot = n;
-  maxexchange = ATOM_DOUBLES + maxslot * RECORD_DOUBLES;
+  maxexchange = EXCHANGE_DOUBLES + maxslot * RECORD_DOUBLES;
   if (capacity > maxslot) set_capacity(maxslot);
 }
 
@@ -217,6 +247,9 @@ int FixLatticeBondStore::update_displacements(double limit)
 {
   const int nlocal = atom->nlocal;
   if (nlocal == 0) return -1;
+  // already measured by the integrator this step: only the test is left
+  if (integrated())
+    return (limit <= 0.0 || integrated_ok) ? -1 : first_beyond(limit, domain->dimension);
   if (domain->triclinic) {
     double *x = atom->x[0];
     double *last = xlast[0];
@@ -332,11 +365,14 @@ void FixLatticeBondStore::set_arrays(int i)
    (s, 0, 0), so that the layout does not depend on shear_layout)
 ------------------------------------------------------------------------- */
 
-int FixLatticeBondStore::pack_atom(int i, double *buf) const
+int FixLatticeBondStore::pack_atom(int i, double *buf, bool step_done) const
 {
   int m = 0;
   buf[m++] = ubuf(nrec[i]).d;
-  for (int k = 0; k < 3; k++) buf[m++] = xlast[i][k];
+  // the position at the last force evaluation: after a step the integrator
+  // measured, that is the current one (xlast still holds the step's start)
+  const double *last = (step_done && integrated()) ? atom->x[i] : xlast[i];
+  for (int k = 0; k < 3; k++) buf[m++] = last[k];
   const double *sp = springs(i);
   const tagint *pt = partners(i);
   const LatticeBondState *st = states(i);
@@ -382,14 +418,29 @@ int FixLatticeBondStore::unpack_atom(int i, const double *buf)
 
 int FixLatticeBondStore::pack_exchange(int i, double *buf)
 {
-  return pack_atom(i, buf);
+  // atoms migrate after the drift and before the force evaluation: with
+  // displacements measured by the integrator, they travel with the atom
+  // (recomputed from a periodically wrapped position they could differ in
+  // the last bit from those of atoms that stayed)
+  int m = 0;
+  buf[m++] = ubuf(integrated() ? 1 : 0).d;
+  for (int k = 0; k < 3; k++) buf[m++] = disp[i][k];
+  // xlast, not the current position: the step is not over
+  return m + pack_atom(i, buf + m, false);
 }
 
 /* ---------------------------------------------------------------------- */
 
 int FixLatticeBondStore::unpack_exchange(int nlocal, double *buf)
 {
-  return unpack_atom(nlocal, buf);
+  int m = 0;
+  const bool measured = ubuf(buf[m++]).i != 0;
+  double moved[3];
+  for (int k = 0; k < 3; k++) moved[k] = buf[m++];
+  m += unpack_atom(nlocal, buf + m);
+  if (measured)
+    for (int k = 0; k < 3; k++) disp[nlocal][k] = moved[k];
+  return m;
 }
 
 /* ----------------------------------------------------------------------
@@ -399,7 +450,8 @@ int FixLatticeBondStore::unpack_exchange(int nlocal, double *buf)
 
 int FixLatticeBondStore::pack_restart(int i, double *buf)
 {
-  const int m = pack_atom(i, buf + 1);
+  // restart files are written after a complete step
+  const int m = pack_atom(i, buf + 1, true);
   buf[0] = m + 1;
   return m + 1;
 }

@@ -41,6 +41,7 @@ class FixLatticeBondStore : public Fix {
   FixLatticeBondStore(class LAMMPS *, int, char **);
   ~FixLatticeBondStore() override;
   int setmask() override;
+  void post_run() override;
 
   void grow_arrays(int) override;
   void copy_arrays(int, int, int) override;
@@ -79,6 +80,11 @@ class FixLatticeBondStore : public Fix {
   int local_max_records() const;
   int global_max_records() const;          // over all ranks (collective)
   int update_displacements(double limit);  // disp = x - xlast, xlast = x (local atoms)
+  // fix lattice/nve, integrating every atom, measured this step's displacements
+  // while it moved them (disp = new - old position, xlast = old position):
+  // update_displacements() then only tests them; ok: none longer than step_limit
+  void mark_integrated(bool ok);
+  bool integrated() const;    // this step's displacements are measured
 
   int maxslot;           // most records an atom may hold (pair_style keyword)
   int capacity;          // records stored per atom now: grows on demand up to maxslot
@@ -90,6 +96,7 @@ class FixLatticeBondStore : public Fix {
   double **xlast;        // position at the last force evaluation (local atoms)
   double **disp;         // displacement since then (local atoms; ghosts by forward comm)
   int bonds_created;     // 1 once the initial bonds exist; never reset (survives restart)
+  double step_limit;     // longest step along an axis that is not an instability (pair style)
   // how the records hold the shear spring: SHEAR_VECTOR, a 3-vector in the
   // tangent plane, ncomp = 3 (3D; also 2D records read from a bond file or an older
   // restart file, until the pair style turns them into scalars), or
@@ -99,9 +106,12 @@ class FixLatticeBondStore : public Fix {
   int shear_layout;
 
  private:
+  bigint integrated_step;    // the step whose displacements fix lattice/nve measured, or -1
+  int integrated_ok;         // and whether none of them was longer than step_limit
   int nmax_store;
   static constexpr int RECORD_DOUBLES = 5;    // packed size of one record (always 3 shear values)
   static constexpr int ATOM_DOUBLES = 4;      // count + xlast
+  static constexpr int EXCHANGE_DOUBLES = ATOM_DOUBLES + 4;    // + measured flag, disp
   // 1: records with the old separation; 2: no shear layout (vectors)
   static constexpr int RESTART_FORMAT = 3;
   void set_capacity(int n);
@@ -109,7 +119,8 @@ class FixLatticeBondStore : public Fix {
   void replace_records(double *, tagint *, LatticeBondState *);
   template <int DIM> int orthogonal_steps(double limit);
   int first_beyond(double limit, int dim) const;
-  int pack_atom(int, double *) const;
+  // step_done: a restart file after a complete step (see pack_atom)
+  int pack_atom(int, double *, bool step_done) const;
   int unpack_atom(int, const double *);
 };
 

@@ -13,11 +13,16 @@
 #include "fix_lattice_nve.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_lattice_bond_store.h"
+#include "modify.h"
+#include "pair_lattice_bond.h"
 #include "force.h"
 #include "update.h"
 
+#include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -26,7 +31,7 @@ using namespace FixConst;
 /* ---------------------------------------------------------------------- */
 
 FixLatticeNVE::FixLatticeNVE(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), dtv(0.0), dtf(0.0)
+    Fix(lmp, narg, arg), dtv(0.0), dtf(0.0), store(nullptr)
 {
   if (narg != 3)
     error->all(FLERR, "Illegal fix lattice/nve command: expected 'fix ID group lattice/nve' "
@@ -52,6 +57,33 @@ void FixLatticeNVE::init()
     error->all(FLERR, "fix lattice/nve needs particle masses: set them with 'set ... mass' "
                "(atom_style sphere) or the mass command");
   reset_dt();
+  store = measuring_store();
+  if (store && comm->me == 0)
+    utils::logmesg(lmp, "fix lattice/nve: moves every atom and measures the steps for "
+                   "pair_style lattice/bond (no separate displacement pass)\n");
+}
+
+/* ----------------------------------------------------------------------
+   the record store of pair_style lattice/bond if this fix may measure each
+   atom's displacement over the step while it moves it, else nullptr.  The
+   store's own pass (disp = x - xlast) then has nothing left to do.  Only
+   when this fix moves every atom and nothing else moves any between two
+   force evaluations: no other integrator or position-changing fix
+   (initial/post-integrate hooks), no box deformation remapping atoms
+------------------------------------------------------------------------- */
+
+FixLatticeBondStore *FixLatticeNVE::measuring_store() const
+{
+  if (igroup != 0) return nullptr;
+  auto *pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
+  if (!pair || !pair->store()) return nullptr;
+  for (int i = 0; i < modify->nfix; i++) {
+    const Fix *other = modify->fix[i];
+    if (other == this) continue;
+    if ((modify->fmask[i] & (INITIAL_INTEGRATE | POST_INTEGRATE)) || other->box_change)
+      return nullptr;
+  }
+  return pair->store();
 }
 
 /* ---------------------------------------------------------------------- */
@@ -83,6 +115,11 @@ void FixLatticeNVE::dispatch(bool drift)
   const bool planar = domain->dimension == 2;
   const bool all = (igroup == 0);
   const bool rmass = atom->rmass_flag && atom->rmass;
+  if (drift && store) {
+    if (planar) rmass ? drift_measured<true, true>() : drift_measured<true, false>();
+    else rmass ? drift_measured<false, true>() : drift_measured<false, false>();
+    return;
+  }
   // one compiled loop per case: 2D or 3D, group all or not, per-atom or
   // per-type mass, with or without the drift
   using Kick = void (FixLatticeNVE::*)();
@@ -126,4 +163,41 @@ template <bool PLANAR, bool ALL, bool RMASS, bool DRIFT> void FixLatticeNVE::kic
       if (!PLANAR) x[k + 2] += dtv * v[k + 2];
     }
   }
+}
+
+/* ----------------------------------------------------------------------
+   the drift half of the step for every atom, measuring each displacement for
+   the record store: disp = new - old position (the same operation, so the
+   same bits, as the store's x - xlast), xlast = old position (what an atom
+   migrating before the force evaluation needs)
+------------------------------------------------------------------------- */
+
+template <bool PLANAR, bool RMASS> void FixLatticeNVE::drift_measured()
+{
+  constexpr int DIM = PLANAR ? 2 : 3;
+  double *__restrict const x = atom->x[0];
+  double *__restrict const v = atom->v[0];
+  const double *__restrict const f = atom->f[0];
+  double *__restrict const disp = store->disp[0];
+  double *__restrict const last = store->xlast[0];
+  const double *const rmass = atom->rmass;
+  const double *const mass = atom->mass;
+  const int *const type = atom->type;
+  const int nlocal = atom->nlocal;
+  // an unstable run: a step longer than the pair style's limit (or NaN)
+  const double cap = (store->step_limit > 0.0) ? store->step_limit : HUGE_VAL;
+  int ok = 1;
+  for (int i = 0; i < nlocal; i++) {
+    const double dtfm = dtf / (RMASS ? rmass[i] : mass[type[i]]);
+    for (int k = 3 * i; k < 3 * i + DIM; k++) {
+      v[k] += dtfm * f[k];
+      const double old = x[k];
+      x[k] = old + dtv * v[k];
+      const double step = x[k] - old;
+      disp[k] = step;
+      last[k] = old;
+      ok &= (std::fabs(step) <= cap);
+    }
+  }
+  store->mark_integrated(ok);
 }

@@ -33,6 +33,11 @@ class FixLatticeNVE : public Fix {
   // mass; DRIFT: also x += dt v (initial_integrate)
   template <bool PLANAR, bool ALL, bool RMASS, bool DRIFT> void kick();
   void dispatch(bool drift);
+
+  // the record store whose displacements the drift measures (see measuring_store)
+  class FixLatticeBondStore *store;
+  class FixLatticeBondStore *measuring_store() const;
+  template <bool PLANAR, bool RMASS> void drift_measured();
 };
 
 }    // namespace LAMMPS_NS

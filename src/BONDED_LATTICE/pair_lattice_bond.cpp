@@ -1067,8 +1067,10 @@ void PairLatticeBond::compute(int eflag, int vflag)
   const bool setup = update->setupflag;
   // (a minimiser's line search may try long steps: no test there)
   const bool minimizing = (update->whichflag == 2);
+  // (fix lattice/nve may have measured the steps already, testing them against step_limit)
+  fix_store->step_limit = STEP_LIMIT_FRACTION * min_radius;
   const int runaway = fix_store->update_displacements(
-      (setup || minimizing) ? 0.0 : STEP_LIMIT_FRACTION * min_radius);
+      (setup || minimizing) ? 0.0 : fix_store->step_limit);
   if (runaway >= 0) report_instability(runaway);
   comm_what = COMM_DISPLACEMENT;
   comm->forward_comm(this);
