@@ -17,9 +17,9 @@
 #include "domain.h"
 #include "error.h"
 #include "fix_lattice_bond_store.h"
+#include "force.h"
 #include "modify.h"
 #include "pair_lattice_bond.h"
-#include "force.h"
 #include "update.h"
 
 #include <cmath>
@@ -69,7 +69,9 @@ void FixLatticeNVE::init()
    store's own pass (disp = x - xlast) then has nothing left to do.  Only
    when this fix moves every atom and nothing else moves any between two
    force evaluations: no other integrator or position-changing fix
-   (initial/post-integrate hooks), no box deformation remapping atoms
+   (initial/post-integrate hooks), no box deformation remapping atoms, and
+   no fix acting before atoms migrate other than those known to leave the
+   positions of existing atoms alone (Monte Carlo moves happen there)
 ------------------------------------------------------------------------- */
 
 FixLatticeBondStore *FixLatticeNVE::measuring_store() const
@@ -80,7 +82,9 @@ FixLatticeBondStore *FixLatticeNVE::measuring_store() const
   for (int i = 0; i < modify->nfix; i++) {
     const Fix *other = modify->fix[i];
     if (other == this) continue;
-    if ((modify->fmask[i] & (INITIAL_INTEGRATE | POST_INTEGRATE)) || other->box_change)
+    const int mask = modify->fmask[i];
+    if ((mask & (INITIAL_INTEGRATE | POST_INTEGRATE)) || other->box_change) return nullptr;
+    if ((mask & PRE_EXCHANGE) && !utils::strmatch(other->style, "^(balance|deposit|pour|evaporate)$"))
       return nullptr;
   }
   return pair->store();
