@@ -180,7 +180,7 @@ def cmd_scene(args: argparse.Namespace) -> int:
         if scene.mode == "dynamic":
             print(f"{scene.dynamic_steps()} time steps of {scene.dt():.4g} s")
         print(f"expected memory of the run: {info['memory_bytes'] / 1e6:.0f} MB on 1 rank, "
-              f"{expected_memory(scene.n, 2) / 1e6:.0f} MB on 2")
+              f"{expected_memory(scene.n, 2, scene.atom_style) / 1e6:.0f} MB on 2")
         if info["expanding"]:
             print(f"expanding grains: {info['expanding']}")
         print(f"run it with: cd {out} && mpirun -np 2 lmp -in {Path(info['deck']).name}")

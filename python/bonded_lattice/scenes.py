@@ -67,6 +67,9 @@ SCENE_COLUMNS = ("k", "step", "exx", "eyy", "sxx", "syy", "intact", "tension", "
 # on 1 rank of 184,800 and 737,600 particles (213 and 775 MB; docs/scenes.md)
 BYTES_PER_PARTICLE = 1020.0
 BYTES_PER_RANK = 30.0e6
+# atom_style atomic carries no diameter, mass, angular velocity or torque: the benchmark's
+# peak memory per particle falls by this much (docs/performance.md, 2D and 3D alike)
+ATOMIC_SAVING_PER_PARTICLE = 81.0
 
 
 # ---------------------------------------------------------------- bond parameters
@@ -596,12 +599,14 @@ def write_scene(scene: Scene, out: str | Path, deck_name: str | None = None) -> 
     (out / name).write_text(deck_text(scene, model))
     return {"deck": str(out / name), "data": str(out / DATA_FILE), "particles": scene.n,
             "data_bytes": (out / DATA_FILE).stat().st_size, "expanding": model.expanding,
-            "memory_bytes": expected_memory(scene.n)}
+            "memory_bytes": expected_memory(scene.n, atom_style=scene.atom_style)}
 
 
-def expected_memory(n: int, ranks: int = 1) -> float:
+def expected_memory(n: int, ranks: int = 1, atom_style: str = "sphere") -> float:
     """Expected resident memory (bytes) of a scene run with n particles, all ranks."""
-    return BYTES_PER_PARTICLE * n + ranks * BYTES_PER_RANK
+    per_particle = BYTES_PER_PARTICLE - (ATOMIC_SAVING_PER_PARTICLE if atom_style == "atomic"
+                                         else 0.0)
+    return per_particle * n + ranks * BYTES_PER_RANK
 
 
 # ---------------------------------------------------------------- reading results
