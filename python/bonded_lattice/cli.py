@@ -187,12 +187,13 @@ def cmd_scene(args: argparse.Namespace) -> int:
         return 0
     summary = run_scene(scene, out, np_=args.np, progress=not args.quiet)
     o = summary["orientation"]
+    orientation = (f"mean broken-bond orientation {o['mean']:.3g} deg from x"
+                   if summary["broken"] else "no broken bond to orient")
     print(f"{summary['kind']} ({summary['mode']}, {summary['particles']} particles): "
           f"{summary['broken']} broken bonds ({summary['broken_tension']} tension, "
           f"{summary['broken_shear']} shear) at strain {summary['strain']:.4g}; peak "
-          f"stress {summary['peak_stress'] / 1e6:.4g} MPa; mean "
-          f"broken-bond orientation {o['mean']:.3g} deg from x; {summary['steps']} steps or "
-          f"iterations; {summary['wall_time_s']} s")
+          f"stress {summary['peak_stress'] / 1e6:.4g} MPa; {orientation}; "
+          f"{summary['steps']} steps or iterations; {summary['wall_time_s']} s")
     print(f"wrote {out}/summary.json, broken_bonds.png, stress_strain.png")
     return 0
 
