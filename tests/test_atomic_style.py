@@ -372,3 +372,34 @@ def test_atomic_scene_matches_sphere(tmp_path):
     assert set(a) == set(b)
     for key in a:
         assert np.array_equal(a[key], b[key]), (key, a[key], b[key])
+
+
+def test_generate_writes_the_chosen_atom_style(tmp_path, capsys):
+    """bonded-lattice generate writes atom_style atomic decks unless told otherwise
+    (--atom-style sphere), and both give the same thermo output to the last bit over
+    the first 2000 loading steps of the compression test (to about 100 MPa, with
+    about a third of the bonds broken)."""
+    from bonded_lattice.cli import main
+
+    args = ["generate", "--dim", "2", "--n", "10", "--test", "compression"]
+    runs = {}
+    for chosen in ("atomic", "sphere"):
+        out = tmp_path / chosen
+        extra = [] if chosen == "atomic" else ["--atom-style", "sphere"]
+        assert main(args + extra + ["--out", str(out)]) == 0
+        deck = (out / "in.compression").read_text()
+        data = (out / "data.lattice").read_text()
+        assert f"atom_style      {chosen}\n" in deck
+        assert ("pair_style      lattice/bond diameter 0.001" in deck) == (chosen == "atomic")
+        assert ("Masses" in data) == (chosen == "atomic")
+        # the first 2000 steps of the loading run
+        lines = deck.splitlines()
+        last_run = max(i for i, l in enumerate(lines) if l.startswith("run "))
+        lines[last_run] = "run             2000"
+        runs[chosen] = run_deck("\n".join(lines) + "\n", out, name="in.short")
+        assert runs[chosen].returncode == 0, runs[chosen].output[-2000:]
+    capsys.readouterr()
+    a, b = runs["atomic"].thermo[-1], runs["sphere"].thermo[-1]
+    assert a.keys() == b.keys()
+    for column in a:
+        assert np.array_equal(np.asarray(a[column]), np.asarray(b[column])), column
