@@ -45,7 +45,7 @@ from typing import TextIO
 
 from .conversion import BondParameters
 from .grains import GrainPairOptions
-from .lattice import ATOM_STYLES
+from .lattice import check_atom_style
 
 TESTS = ("tension", "compression", "elastic", "confined")
 SCHEDULES = ("constant", "stepwise")
@@ -94,9 +94,7 @@ class DeckSpec:
         if self.shear_frame not in SHEAR_FRAMES:
             raise ValueError(f"shear_frame = {self.shear_frame!r} is not known: use one of "
                              f"{', '.join(SHEAR_FRAMES)}")
-        if self.atom_style not in ATOM_STYLES:
-            raise ValueError(f"atom_style = {self.atom_style!r} is not supported: use one of "
-                             f"{', '.join(ATOM_STYLES)}")
+        check_atom_style(self.atom_style)
         if self.schedule not in SCHEDULES:
             raise ValueError(f"schedule = {self.schedule!r} is not known: use one of "
                              f"{', '.join(SCHEDULES)}")

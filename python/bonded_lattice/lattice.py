@@ -365,6 +365,14 @@ def pairs_within(positions: np.ndarray,
 ATOM_STYLES = ("sphere", "atomic")    # of write_data; atomic: pair_style lattice/bond diameter D
 
 
+def check_atom_style(atom_style: str) -> str:
+    """The atom style, if one of :data:`ATOM_STYLES`; else a ValueError naming it."""
+    if atom_style not in ATOM_STYLES:
+        raise ValueError(f"atom_style = {atom_style!r} is not supported: use one of "
+                         f"{', '.join(ATOM_STYLES)}")
+    return atom_style
+
+
 def write_data(lattice: Lattice, path: str | Path, mass: float,
                atom_types: int | None = None, grain: np.ndarray | None = None,
                stiffness: np.ndarray | None = None, atom_style: str = "sphere") -> None:
@@ -394,9 +402,7 @@ def write_data(lattice: Lattice, path: str | Path, mass: float,
     mass = float(mass)
     if not mass > 0:
         raise ValueError(f"mass = {mass} is out of range: need mass > 0")
-    if atom_style not in ATOM_STYLES:
-        raise ValueError(f"atom_style = {atom_style!r} is not supported: use one of "
-                         f"{', '.join(ATOM_STYLES)}")
+    check_atom_style(atom_style)
     if (grain is None) != (stiffness is None):
         raise ValueError("grain and stiffness go together (fix property/atom i_grain "
                          "d_stiffness reads both): give both or neither")

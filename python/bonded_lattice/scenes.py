@@ -50,7 +50,7 @@ import numpy as np
 from .conversion import BondParameters, lattice_mass, rock_to_bond
 from .grains import (GrainPairOptions, competent_layer, particle_stiffness,
                      voronoi_grains, voronoi_seeds)
-from .lattice import ATOM_STYLES, Lattice, write_data
+from .lattice import Lattice, check_atom_style, write_data
 
 KINDS = ("layer-extension", "layer-compression", "polycrystal", "expanding")
 # how the box deforms: pure shear (the other axis shortens or lengthens to keep the area),
@@ -172,9 +172,7 @@ class Scene:
         if self.kind == "expanding" and self.deformation != "pure-shear":
             raise ValueError(f"deformation = {self.deformation!r}: growing grains load a box "
                              "whose walls are held; the deformation does not apply")
-        if self.atom_style not in ATOM_STYLES:
-            raise ValueError(f"atom_style = {self.atom_style!r} is not supported: use one of "
-                             f"{', '.join(ATOM_STYLES)}")
+        check_atom_style(self.atom_style)
         if self.kind == "expanding" and self.atom_style != "sphere":
             raise ValueError(f"atom_style = {self.atom_style!r}: growing grains change their "
                              "particles' diameters, which needs atom_style sphere")

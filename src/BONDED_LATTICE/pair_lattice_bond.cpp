@@ -353,7 +353,7 @@ void PairLatticeBond::init_style()
 
   // cutoff: the longest bond that can exist (2 * largest radius, plus tolerance)
   const double maxrad = measure_radii();
-  if (atom->natoms > 0 && maxrad <= 0.0 && !(diameter > 0.0))
+  if (atom->natoms > 0 && maxrad <= 0.0)
     error->all(FLERR, "pair_style lattice/bond: all particles have zero diameter; set diameters "
                "(the bond rest length is r_i + r_j)");
   const double cut_auto = 2.0 * maxrad * (1.0 + tolerance);
@@ -1884,6 +1884,8 @@ static std::string read_string(LAMMPS *lmp, FILE *fp)
 
 void PairLatticeBond::read_restart_settings(FILE *fp)
 {
+  // the second word: maxslot (format 1) or minus the format (2 and later)
+  const auto known_format = [](int word) { return word <= -2 && word >= -SETTINGS_FORMAT; };
   int word = 0;
   if (comm->me == 0) {
     utils::sfread(FLERR, &tolerance, sizeof(double), 1, fp, nullptr, error);
@@ -1891,16 +1893,16 @@ void PairLatticeBond::read_restart_settings(FILE *fp)
     if (word > 0) {    // format 1: maxslot, cutoff; the papers' shear frame
       maxslot = word;
       shear_frame = SHEAR_FRAME_FIXED;
-    } else if (word <= -2 && word >= -SETTINGS_FORMAT) {
+    } else if (known_format(word)) {
       utils::sfread(FLERR, &maxslot, sizeof(int), 1, fp, nullptr, error);
     }
-    if (word > 0 || (word <= -2 && word >= -SETTINGS_FORMAT))
+    if (word > 0 || known_format(word))
       utils::sfread(FLERR, &cut_user, sizeof(double), 1, fp, nullptr, error);
-    if (word <= -2 && word >= -SETTINGS_FORMAT)
+    if (known_format(word))
       utils::sfread(FLERR, &shear_frame, sizeof(int), 1, fp, nullptr, error);
   }
   MPI_Bcast(&word, 1, MPI_INT, 0, world);
-  if (word <= 0 && !(word <= -2 && word >= -SETTINGS_FORMAT))
+  if (word <= 0 && !known_format(word))
     error->all(FLERR, "This restart file holds pair_style lattice/bond settings in format {} "
                "(a newer BONDED_LATTICE version); this version reads formats 1 to {}", -word,
                SETTINGS_FORMAT);
