@@ -9,6 +9,8 @@
 #include "domain.h"
 #include "memory.h"
 
+#include <cstring>
+
 using namespace LAMMPS_NS;
 
 /* ---------------------------------------------------------------------- */
@@ -26,7 +28,7 @@ FixLatticeAtomHistory::~FixLatticeAtomHistory()
     atom->delete_callback(id, Atom::GROW);
     atom->delete_callback(id, Atom::RESTART);
   }
-  memory->destroy(hist);
+  memory->sfree(hist);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -47,21 +49,22 @@ void FixLatticeAtomHistory::create_history(int n)
 
 void FixLatticeAtomHistory::grow_arrays(int nmax)
 {
-  memory->grow(hist, nmax, nvalues, "lattice:history");
+  hist = (double *) memory->srealloc(hist, sizeof(double) * nvalues * (bigint) nmax,
+                                     "lattice:history");
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixLatticeAtomHistory::copy_arrays(int i, int j, int /*delflag*/)
 {
-  for (int k = 0; k < nvalues; k++) hist[j][k] = hist[i][k];
+  std::memcpy(history(j), history(i), sizeof(double) * nvalues);
 }
 
 /* ---------------------------------------------------------------------- */
 
 int FixLatticeAtomHistory::pack_exchange(int i, double *buf)
 {
-  for (int k = 0; k < nvalues; k++) buf[k] = hist[i][k];
+  std::memcpy(buf, history(i), sizeof(double) * nvalues);
   return nvalues;
 }
 
@@ -69,7 +72,7 @@ int FixLatticeAtomHistory::pack_exchange(int i, double *buf)
 
 int FixLatticeAtomHistory::unpack_exchange(int nlocal, double *buf)
 {
-  for (int k = 0; k < nvalues; k++) hist[nlocal][k] = buf[k];
+  std::memcpy(history(nlocal), buf, sizeof(double) * nvalues);
   return nvalues;
 }
 

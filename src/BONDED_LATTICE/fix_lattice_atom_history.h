@@ -51,8 +51,11 @@ class FixLatticeAtomHistory : public Fix {
   double memory_usage() override;
 
  protected:
-  int nvalues;      // doubles per atom
-  double **hist;    // nmax x nvalues
+  int nvalues;     // doubles per atom
+  // nmax x nvalues in one block: no row pointers (8 bytes per atom less
+  // than a LAMMPS 2D array)
+  double *hist;
+  double *history(int i) const { return hist + (bigint) i * nvalues; }
 
   // derived constructors call this once they know nvalues; it also
   // initialises the local atoms with set_arrays()

@@ -8,7 +8,8 @@
    atom has room for `capacity` records, which starts small and grows (up to
    maxslot) when an atom needs more; the pair style fits it to the largest
    count after creating the bonds.  It also keeps each atom's position at the
-   last force evaluation, from which the step's displacements follow.
+   last force evaluation, from which the step's displacements follow, in the
+   same array as those displacements (see motion in the header).
 ------------------------------------------------------------------------- */
 
 #include "fix_lattice_bond_store.h"
@@ -35,8 +36,8 @@ static constexpr int CAPACITY_STEP = 2;    // small steps: memory follows need
 
 FixLatticeBondStore::FixLatticeBondStore(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), nrec(nullptr), ncomp(3), spring(nullptr), partner(nullptr),
-    state(nullptr), xlast(nullptr), disp(nullptr),
-    bonds_created(0), step_limit(0.0), shear_layout(SHEAR_VECTOR), integrated_step(-1),
+    state(nullptr), bonds_created(0), step_limit(0.0), shear_layout(SHEAR_VECTOR),
+    motion(nullptr), motion_is_step(false), step_from_pass(false), integrated_step(-1),
     integrated_ok(1), nmax_store(0)
 {
   if (narg != 4) error->all(FLERR, "Illegal fix {} command: expected one argument (maxslot)", style);
@@ -47,7 +48,7 @@ FixLatticeBondStore::FixLatticeBondStore(LAMMPS *lmp, int narg, char **arg) :
   restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
-  maxexchange = EXCHANGE_DOUBLES + maxslot * RECORD_DOUBLES;
+  maxexchange = ATOM_DOUBLES + maxslot * RECORD_DOUBLES;
 
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -63,8 +64,7 @@ FixLatticeBondStore::~FixLatticeBondStore()
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(nrec);
   replace_records(nullptr, nullptr, nullptr);
-  memory->destroy(xlast);
-  memory->destroy(disp);
+  memory->sfree(motion);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -76,15 +76,17 @@ int FixLatticeBondStore::setmask()
 
 /* ----------------------------------------------------------------------
    fix lattice/nve moved every atom this step and measured the displacements
-   as it went (see mark_integrated); the last positions become the current
-   ones when the run ends, so that a following run, minimisation or restart
-   file sees no step
+   into motion as it went; the last positions are the current ones again when
+   the run ends, so that a following run, minimisation or restart file sees
+   no step
 ------------------------------------------------------------------------- */
 
 void FixLatticeBondStore::mark_integrated(bool ok)
 {
   integrated_step = update->ntimestep;
   integrated_ok = ok ? 1 : 0;
+  motion_is_step = true;
+  step_from_pass = false;
 }
 
 bool FixLatticeBondStore::integrated() const
@@ -94,12 +96,30 @@ bool FixLatticeBondStore::integrated() const
 
 void FixLatticeBondStore::post_run()
 {
-  if (integrated()) {
-    double **x = atom->x;
-    for (int i = 0; i < atom->nlocal; i++)
-      for (int k = 0; k < 3; k++) xlast[i][k] = x[i][k];
-  }
+  if (motion_is_step) positions_to_motion();
   integrated_step = -1;
+}
+
+/* ----------------------------------------------------------------------
+   the last positions are the current ones (a 2D atom's third value stays 0,
+   as the displacements of 2D atoms have no z part)
+------------------------------------------------------------------------- */
+
+void FixLatticeBondStore::positions_to_motion()
+{
+  const int dim = domain->dimension;
+  const double *x = atom->x[0];
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int k = 0; k < dim; k++) motion[3 * i + k] = x[3 * i + k];
+  motion_is_step = false;
+  step_from_pass = false;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeBondStore::end_evaluation()
+{
+  if (step_from_pass) positions_to_motion();
 }
 
 /* ---------------------------------------------------------------------- */
@@ -232,40 +252,43 @@ void FixLatticeBondStore::set_maxslot(int n)
     error->all(FLERR, "pair_style lattice/bond maxslot {} is too small: an atom holds {} bonds "
                "and contacts; use maxslot >= {}", n, most_all, most_all);
   maxslot = n;
-  maxexchange = EXCHANGE_DOUBLES + maxslot * RECORD_DOUBLES;
+  maxexchange = ATOM_DOUBLES + maxslot * RECORD_DOUBLES;
   if (capacity > maxslot) set_capacity(maxslot);
 }
 
 /* ----------------------------------------------------------------------
    each local atom's displacement since the last force evaluation, with
-   periodic jumps removed; the pair style sends it to the ghosts.  With
-   limit > 0: the index of an atom that moved more than limit along an axis
-   (or to NaN), else -1
+   periodic jumps removed, formed in place of the last position (which the
+   current position replaces at end_evaluation); the pair style sends them
+   to the ghosts.  With limit > 0: the index of an atom that moved more than
+   limit along an axis (or to NaN), else -1
 ------------------------------------------------------------------------- */
 
 int FixLatticeBondStore::update_displacements(double limit)
 {
   const int nlocal = atom->nlocal;
-  if (nlocal == 0) return -1;
   // already measured by the integrator this step: only the test is left
   if (integrated())
-    return (limit <= 0.0 || integrated_ok) ? -1 : first_beyond(limit, domain->dimension);
+    return (nlocal == 0 || limit <= 0.0 || integrated_ok) ? -1 : first_beyond(limit, domain->dimension);
+  if (motion_is_step)
+    error->one(FLERR, "fix {}: internal error: displacements formed twice without a force "
+               "evaluation ending in between", style);
+  motion_is_step = true;
+  step_from_pass = true;
+  if (nlocal == 0) return -1;
   if (domain->triclinic) {
-    double *x = atom->x[0];
-    double *last = xlast[0];
-    double *d = disp[0];
+    const int dim = domain->dimension;
+    const double *x = atom->x[0];
     for (int i = 0; i < nlocal; i++) {
-      double step[3] = {x[3 * i] - last[3 * i], x[3 * i + 1] - last[3 * i + 1],
-                        x[3 * i + 2] - last[3 * i + 2]};
+      double *m = motion + 3 * i;
+      double step[3] = {x[3 * i] - m[0], x[3 * i + 1] - m[1],
+                        (dim == 3) ? x[3 * i + 2] - m[2] : 0.0};
       lattice_unwrap_step(domain, step);
-      for (int k = 0; k < 3; k++) {
-        d[3 * i + k] = step[k];
-        last[3 * i + k] = x[3 * i + k];
-      }
+      for (int k = 0; k < 3; k++) m[k] = step[k];
     }
-    return (limit > 0.0) ? first_beyond(limit, 3) : -1;
+    return (limit > 0.0) ? first_beyond(limit, dim) : -1;
   }
-  // 2D: the force loop reads x and y only (z stays as set_arrays left it)
+  // 2D: the force loop reads x and y only (z stays 0)
   return (domain->dimension == 2) ? orthogonal_steps<2>(limit) : orthogonal_steps<3>(limit);
 }
 
@@ -278,8 +301,7 @@ template <int DIM> int FixLatticeBondStore::orthogonal_steps(double limit)
 {
   const int nlocal = atom->nlocal;
   const auto *const x = reinterpret_cast<const double(*)[3]>(atom->x[0]);
-  auto *const last = reinterpret_cast<double(*)[3]>(xlast[0]);
-  auto *const d = reinterpret_cast<double(*)[3]>(disp[0]);
+  auto *const m = reinterpret_cast<double(*)[3]>(motion);
   // half the period along periodic axes, no jump along the others
   const int periodic[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
   const double prd[3] = {domain->xprd, domain->yprd, domain->zprd};
@@ -288,10 +310,9 @@ template <int DIM> int FixLatticeBondStore::orthogonal_steps(double limit)
   int ok = 1;
   for (int i = 0; i < nlocal; i++)
     for (int k = 0; k < DIM; k++) {
-      double step = x[i][k] - last[i][k];
+      double step = x[i][k] - m[i][k];
       if (std::fabs(step) > half[k]) step -= std::copysign(prd[k], step);
-      d[i][k] = step;
-      last[i][k] = x[i][k];
+      m[i][k] = step;
       ok &= (std::fabs(step) <= limit);    // false for NaN too
     }
   if (limit <= 0.0 || ok) return -1;
@@ -307,7 +328,7 @@ int FixLatticeBondStore::first_beyond(double limit, int dim) const
 {
   for (int i = 0; i < atom->nlocal; i++)
     for (int k = 0; k < dim; k++)
-      if (!(std::fabs(disp[i][k]) <= limit)) return i;
+      if (!(std::fabs(motion[3 * i + k]) <= limit)) return i;
   return -1;
 }
 
@@ -318,8 +339,8 @@ void FixLatticeBondStore::grow_arrays(int nmax)
   memory->grow(nrec, nmax, "lattice/bond/store:nrec");
   // atoms not yet filled (read_restart unpacks them one by one) hold no records
   for (int i = nmax_store; i < nmax; i++) nrec[i] = 0;
-  memory->grow(xlast, nmax, 3, "lattice/bond/store:xlast");
-  memory->grow(disp, nmax, 3, "lattice/bond/store:disp");
+  motion = (double *) memory->srealloc(motion, sizeof(double) * 3 * (bigint) nmax,
+                                       "lattice/bond/store:motion");
   const bigint nslots = (bigint) nmax * capacity;
   spring = (double *) memory->srealloc(spring, nslots * ncomp * sizeof(double),
                                        "lattice/bond/store:spring");
@@ -340,10 +361,7 @@ void FixLatticeBondStore::copy_arrays(int i, int j, int /*delflag*/)
     std::memcpy(partners(j), partners(i), nrec[i] * sizeof(tagint));
     std::memcpy(states(j), states(i), nrec[i] * sizeof(LatticeBondState));
   }
-  for (int k = 0; k < 3; k++) {
-    xlast[j][k] = xlast[i][k];
-    disp[j][k] = disp[i][k];
-  }
+  for (int k = 0; k < 3; k++) motion[3 * j + k] = motion[3 * i + k];
 }
 
 /* ----------------------------------------------------------------------
@@ -353,26 +371,22 @@ void FixLatticeBondStore::copy_arrays(int i, int j, int /*delflag*/)
 void FixLatticeBondStore::set_arrays(int i)
 {
   nrec[i] = 0;
-  for (int k = 0; k < 3; k++) {
-    xlast[i][k] = atom->x[i][k];
-    disp[i][k] = 0.0;
-  }
+  const int dim = domain->dimension;
+  for (int k = 0; k < 3; k++) motion[3 * i + k] = (motion_is_step || k >= dim) ? 0.0 : atom->x[i][k];
 }
 
 /* ----------------------------------------------------------------------
-   one atom as doubles: record count, last position, then 5 values per record
+   one atom as doubles: record count, a triple (the last position or the
+   displacement, see pack_exchange and pack_restart), then 5 values per record
    (partner, state, three spring components: a planar spring is written as
    (s, 0, 0), so that the layout does not depend on shear_layout)
 ------------------------------------------------------------------------- */
 
-int FixLatticeBondStore::pack_atom(int i, double *buf, bool step_done) const
+int FixLatticeBondStore::pack_atom(int i, double *buf, const double *triple) const
 {
   int m = 0;
   buf[m++] = ubuf(nrec[i]).d;
-  // the position at the last force evaluation: after a step the integrator
-  // measured, that is the current one (xlast still holds the step's start)
-  const double *last = (step_done && integrated()) ? atom->x[i] : xlast[i];
-  for (int k = 0; k < 3; k++) buf[m++] = last[k];
+  for (int k = 0; k < 3; k++) buf[m++] = triple[k];
   const double *sp = springs(i);
   const tagint *pt = partners(i);
   const LatticeBondState *st = states(i);
@@ -397,10 +411,9 @@ int FixLatticeBondStore::unpack_atom(int i, const double *buf)
                atom->tag[i], n, maxslot, n);
   if (n > capacity) set_capacity(std::min(maxslot, n + CAPACITY_STEP));
   nrec[i] = n;
-  for (int k = 0; k < 3; k++) {
-    xlast[i][k] = buf[m++];
-    disp[i][k] = 0.0;
-  }
+  // (a 2D atom's third value stays 0: the displacements of 2D atoms have no z part)
+  for (int k = 0; k < 3; k++) motion[3 * i + k] = (k < domain->dimension) ? buf[m + k] : 0.0;
+  m += 3;
   double *sp = springs(i);
   tagint *pt = partners(i);
   LatticeBondState *st = states(i);
@@ -418,29 +431,19 @@ int FixLatticeBondStore::unpack_atom(int i, const double *buf)
 
 int FixLatticeBondStore::pack_exchange(int i, double *buf)
 {
-  // atoms migrate after the drift and before the force evaluation: with
-  // displacements measured by the integrator, they travel with the atom
-  // (recomputed from a periodically wrapped position they could differ in
-  // the last bit from those of atoms that stayed)
-  int m = 0;
-  buf[m++] = ubuf(integrated() ? 1 : 0).d;
-  for (int k = 0; k < 3; k++) buf[m++] = disp[i][k];
-  // xlast, not the current position: the step is not over
-  return m + pack_atom(i, buf + m, false);
+  // atoms migrate after the drift and before the force evaluation: motion
+  // holds their last positions, or the displacements fix lattice/nve measured
+  // (which travel with the atom: recomputed from a periodically wrapped
+  // position they could differ in the last bit from those of atoms that
+  // stayed); every rank is in the same phase
+  return pack_atom(i, buf, motion + 3 * i);
 }
 
 /* ---------------------------------------------------------------------- */
 
 int FixLatticeBondStore::unpack_exchange(int nlocal, double *buf)
 {
-  int m = 0;
-  const bool measured = ubuf(buf[m++]).i != 0;
-  double moved[3];
-  for (int k = 0; k < 3; k++) moved[k] = buf[m++];
-  m += unpack_atom(nlocal, buf + m);
-  if (measured)
-    for (int k = 0; k < 3; k++) disp[nlocal][k] = moved[k];
-  return m;
+  return unpack_atom(nlocal, buf);
 }
 
 /* ----------------------------------------------------------------------
@@ -450,8 +453,9 @@ int FixLatticeBondStore::unpack_exchange(int nlocal, double *buf)
 
 int FixLatticeBondStore::pack_restart(int i, double *buf)
 {
-  // restart files are written after a complete step
-  const int m = pack_atom(i, buf + 1, true);
+  // restart files are written after a complete step: the position of its
+  // force evaluation is the current one when motion holds the step
+  const int m = pack_atom(i, buf + 1, motion_is_step ? atom->x[i] : motion + 3 * i);
   buf[0] = m + 1;
   return m + 1;
 }
@@ -518,5 +522,5 @@ void FixLatticeBondStore::restart(char *buf)
 double FixLatticeBondStore::memory_usage()
 {
   const double per_record = ncomp * sizeof(double) + sizeof(tagint) + sizeof(LatticeBondState);
-  return (double) nmax_store * (sizeof(int) + 6 * sizeof(double) + capacity * per_record);
+  return (double) nmax_store * (sizeof(int) + 3 * sizeof(double) + capacity * per_record);
 }

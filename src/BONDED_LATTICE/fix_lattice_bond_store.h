@@ -20,7 +20,7 @@ namespace LAMMPS_NS {
 // particle with the lower tag ("owner"); only the rank owning that particle
 // updates it, so ranks can never disagree about whether a bond broke.  The
 // step's relative displacement comes from the two particles' displacements
-// (FixLatticeBondStore::disp), so a record keeps no old separation.
+// (FixLatticeBondStore::displacements), so a record keeps no old separation.
 //
 // A record is one entry in each of three arrays (FixLatticeBondStore): its
 // shear spring (ncomp doubles, force on the owner -Ks*spring), the partner's
@@ -79,12 +79,23 @@ class FixLatticeBondStore : public Fix {
   void fit_capacity(int n);                // capacity = max(n, every atom's count) <= maxslot
   int local_max_records() const;
   int global_max_records() const;          // over all ranks (collective)
-  int update_displacements(double limit);  // disp = x - xlast, xlast = x (local atoms)
+  // this step's displacements: formed from the last positions by the store
+  // (disp = x - last position, periodic jumps removed), or already measured
+  // by fix lattice/nve; with limit > 0 the index of an atom that moved more
+  // than limit along an axis (or to NaN), else -1
+  int update_displacements(double limit);
+  // the force evaluation that used the displacements is over: the store's
+  // own displacements give way to the current positions again
+  void end_evaluation();
   // fix lattice/nve, integrating every atom, measured this step's displacements
-  // while it moved them (disp = new - old position, xlast = old position):
+  // into displacements() while it moved them (new - old position);
   // update_displacements() then only tests them; ok: none longer than step_limit
   void mark_integrated(bool ok);
   bool integrated() const;    // this step's displacements are measured
+  // the displacements over the step (3 per atom, ghosts by forward comm of the
+  // pair style), valid from update_displacements() or the measuring drift to the
+  // end of the force evaluation
+  double *displacements() const { return motion; }
 
   int maxslot;           // most records an atom may hold (pair_style keyword)
   int capacity;          // records stored per atom now: grows on demand up to maxslot
@@ -93,8 +104,6 @@ class FixLatticeBondStore : public Fix {
   double *spring;        // shear springs, ncomp * capacity per atom
   tagint *partner;       // tag of the higher-tag particle, capacity per atom
   LatticeBondState *state;    // capacity per atom
-  double **xlast;        // position at the last force evaluation (local atoms)
-  double **disp;         // displacement since then (local atoms; ghosts by forward comm)
   int bonds_created;     // 1 once the initial bonds exist; never reset (survives restart)
   double step_limit;     // longest step along an axis that is not an instability (pair style)
   // how the records hold the shear spring: SHEAR_VECTOR, a 3-vector in the
@@ -106,21 +115,29 @@ class FixLatticeBondStore : public Fix {
   int shear_layout;
 
  private:
+  // one triple per atom (nmax x 3 in one block), in one of two roles: the
+  // position at the last force evaluation, or this step's displacement (from
+  // the moment it is formed until the evaluation is over; with fix lattice/nve
+  // measuring, until the next drift, the last positions being the current
+  // ones).  One array in two roles instead of two saves 32 bytes per particle
+  double *motion;
+  bool motion_is_step;       // motion holds displacements
+  bool step_from_pass;       // ... formed by update_displacements (end_evaluation restores)
   bigint integrated_step;    // the step whose displacements fix lattice/nve measured, or -1
   int integrated_ok;         // and whether none of them was longer than step_limit
   int nmax_store;
   static constexpr int RECORD_DOUBLES = 5;    // packed size of one record (always 3 shear values)
-  static constexpr int ATOM_DOUBLES = 4;      // count + xlast
-  static constexpr int EXCHANGE_DOUBLES = ATOM_DOUBLES + 4;    // + measured flag, disp
+  static constexpr int ATOM_DOUBLES = 4;      // count + last position (exchange: motion)
   // 1: records with the old separation; 2: no shear layout (vectors)
   static constexpr int RESTART_FORMAT = 3;
+  void positions_to_motion();    // motion = current positions (local atoms)
   void set_capacity(int n);
   void relayout(int new_capacity, int new_ncomp);
   void replace_records(double *, tagint *, LatticeBondState *);
   template <int DIM> int orthogonal_steps(double limit);
   int first_beyond(double limit, int dim) const;
-  // step_done: a restart file after a complete step (see pack_atom)
-  int pack_atom(int, double *, bool step_done) const;
+  // record count, the given triple, the records
+  int pack_atom(int, double *, const double *triple) const;
   int unpack_atom(int, const double *);
 };
 

@@ -130,7 +130,7 @@ void FixLatticeEnergy::end_of_step()
   double work = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & workbit)) continue;
-    double *h = hist[i];
+    double *h = history(i);
     double dx[3] = {x[i][0] - h[3], x[i][1] - h[4], x[i][2] - h[5]};
     unwrap_step(dx);
     work -= 0.5 * ((h[0] + f[i][0]) * dx[0] + (h[1] + f[i][1]) * dx[1] + (h[2] + f[i][2]) * dx[2]);
@@ -150,8 +150,8 @@ void FixLatticeEnergy::set_arrays(int i)
 {
   if (!nvalues) return;
   for (int k = 0; k < 3; k++) {
-    hist[i][k] = atom->f[i][k];
-    hist[i][3 + k] = atom->x[i][k];
+    history(i)[k] = atom->f[i][k];
+    history(i)[3 + k] = atom->x[i][k];
   }
 }
 

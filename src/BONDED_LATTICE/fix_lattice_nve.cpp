@@ -171,9 +171,10 @@ template <bool PLANAR, bool ALL, bool RMASS, bool DRIFT> void FixLatticeNVE::kic
 
 /* ----------------------------------------------------------------------
    the drift half of the step for every atom, measuring each displacement for
-   the record store: disp = new - old position (the same operation, so the
-   same bits, as the store's x - xlast), xlast = old position (what an atom
-   migrating before the force evaluation needs)
+   the record store: new - old position (the same operation, so the same
+   bits, as the store's x - last position).  The old positions are not kept:
+   the step's force evaluation is the next one that needs a last position,
+   and after it that is the current one
 ------------------------------------------------------------------------- */
 
 template <bool PLANAR, bool RMASS> void FixLatticeNVE::drift_measured()
@@ -182,8 +183,7 @@ template <bool PLANAR, bool RMASS> void FixLatticeNVE::drift_measured()
   double *__restrict const x = atom->x[0];
   double *__restrict const v = atom->v[0];
   const double *__restrict const f = atom->f[0];
-  double *__restrict const disp = store->disp[0];
-  double *__restrict const last = store->xlast[0];
+  double *__restrict const disp = store->displacements();
   const double *const rmass = atom->rmass;
   const double *const mass = atom->mass;
   const int *const type = atom->type;
@@ -199,7 +199,6 @@ template <bool PLANAR, bool RMASS> void FixLatticeNVE::drift_measured()
       x[k] = old + dtv * v[k];
       const double step = x[k] - old;
       disp[k] = step;
-      last[k] = old;
       ok &= (std::fabs(step) <= cap);
     }
   }

@@ -57,9 +57,10 @@ void FixLatticeViscous::setup(int vflag)
   const int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++)
     if (mask[i] & groupbit) {
-      f[i][0] += hist[i][0];
-      f[i][1] += hist[i][1];
-      f[i][2] += hist[i][2];
+      const double *h = history(i);
+      f[i][0] += h[0];
+      f[i][1] += h[1];
+      f[i][2] += h[2];
     }
 }
 
@@ -106,7 +107,7 @@ template <int DIM, bool ALL, bool KEEP> void FixLatticeViscous::damp_components(
 {
   const double *__restrict const v = atom->v[0];
   double *__restrict const f = atom->f[0];
-  double *__restrict const h = hist[0];
+  double *__restrict const h = hist;
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   if (nlocal == 0) return;
@@ -147,7 +148,7 @@ void FixLatticeViscous::post_run()
 
 void FixLatticeViscous::set_arrays(int i)
 {
-  for (int k = 0; k < 3; k++) hist[i][k] = -eta * atom->v[i][k];
+  for (int k = 0; k < 3; k++) history(i)[k] = -eta * atom->v[i][k];
 }
 
 /* ---------------------------------------------------------------------- */

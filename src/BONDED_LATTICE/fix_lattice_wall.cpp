@@ -242,8 +242,8 @@ void FixLatticeWall::apply_forces(bool step_taken)
     if (!(mask[i] & groupbit)) continue;
 
     // tangential displacement since the last step (periodic jumps removed)
-    double *s = hist[i];        // shear spring
-    double *xprev = hist[i] + 3;  // position at the last step
+    double *s = history(i);     // shear spring
+    double *xprev = s + 3;        // position at the last step
     double inc[3] = {x[i][0] - xprev[0], x[i][1] - xprev[1], x[i][2] - xprev[2]};
     unwrap_step(inc);
     inc[dim] = 0.0;
@@ -332,8 +332,8 @@ double FixLatticeWall::compute_vector(int n)
 void FixLatticeWall::set_arrays(int i)
 {
   for (int k = 0; k < 3; k++) {
-    hist[i][k] = 0.0;                 // shear spring
-    hist[i][3 + k] = atom->x[i][k];   // position
+    history(i)[k] = 0.0;              // shear spring
+    history(i)[3 + k] = atom->x[i][k];    // position
   }
 }
 

@@ -1010,7 +1010,7 @@ void PairLatticeBond::check_time_step()
 void PairLatticeBond::report_instability(int i)
 {
   double **x = atom->x;
-  const double *d = fix_store->disp[i];
+  const double *d = fix_store->displacements() + 3 * i;
   const double step = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   const double dt = update->dt;
   error->one(FLERR,
@@ -1098,6 +1098,8 @@ void PairLatticeBond::compute(int eflag, int vflag)
   const int features = scene_features();
   (this->*EVAL_TABLE[features])();
 
+  // the displacements the store formed give way to the positions again
+  fix_store->end_evaluation();
   if (vflag_fdotr) virial_fdotr_compute();
 }
 
@@ -1197,7 +1199,7 @@ template <bool PLANAR> void PairLatticeBond::fit_sums_over_bonds()
 {
   constexpr int NV = PLANAR ? FIT_VALUES_2D : FIT_VALUES_3D;
   const auto *const x = reinterpret_cast<const double(*)[3]>(atom->x[0]);
-  const auto *const disp = reinterpret_cast<const double(*)[3]>(fix_store->disp[0]);
+  const auto *const disp = reinterpret_cast<const double(*)[3]>(fix_store->displacements());
   const int *const nrec = fix_store->nrec;
   double *const sums = fit_sums.data();
   const int nlocal = atom->nlocal;
@@ -1418,7 +1420,7 @@ template <int F> void PairLatticeBond::eval()
   const int *const type = atom->type;
   const int nlocal = atom->nlocal;
   const int *const nrec = fix_store->nrec;
-  const auto *const disp = reinterpret_cast<const double(*)[3]>(fix_store->disp[0]);
+  const auto *const disp = reinterpret_cast<const double(*)[3]>(fix_store->displacements());
   const int stride = partner_stride;
   const BondParams p_uniform = params[1][1];
   const double touch_equal = 2.0 * equal_radius;    // r + r is exact: the same bits
@@ -1755,7 +1757,7 @@ double PairLatticeBond::planar_release(const double *sh, double ks, double t)
 int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
                                        int * /*pbc*/)
 {
-  double **disp = fix_store->disp;
+  const double *disp = fix_store->displacements();
   const int dim = domain->dimension;    // 2D: the force loop reads x and y only
   int m = 0;
   if (comm_what == COMM_SPIN) {    // the rotations (2D: about z only)
@@ -1772,7 +1774,7 @@ int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int /*pbc_
     return m;
   }
   for (int k = 0; k < n; k++)
-    for (int c = 0; c < dim; c++) buf[m++] = disp[list[k]][c];
+    for (int c = 0; c < dim; c++) buf[m++] = disp[3 * list[k] + c];
   return m;
 }
 
@@ -1780,7 +1782,7 @@ int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int /*pbc_
 
 void PairLatticeBond::unpack_forward_comm(int n, int first, double *buf)
 {
-  double **disp = fix_store->disp;
+  double *disp = fix_store->displacements();
   const int dim = domain->dimension;
   int m = 0;
   if (comm_what == COMM_SPIN) {
@@ -1798,7 +1800,7 @@ void PairLatticeBond::unpack_forward_comm(int n, int first, double *buf)
     return;
   }
   for (int i = first; i < first + n; i++)
-    for (int c = 0; c < dim; c++) disp[i][c] = buf[m++];
+    for (int c = 0; c < dim; c++) disp[3 * i + c] = buf[m++];
 }
 
 /* ----------------------------------------------------------------------
