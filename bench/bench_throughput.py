@@ -81,6 +81,10 @@ fix             zbot bottom setforce 0 0 0
 fix             nve all {integrator}
 fix             damp inner {damping}
 neighbor        {skin} bin
+# bins of one neighbour cutoff for the lists and for sorting atoms (LAMMPS'
+# default, half a cutoff, takes 8x the bins in 3D: 20 bytes per particle each)
+neigh_modify    binsize {cut}
+atom_modify     sort 1000 {cut}
 timestep        {dt}
 thermo          1000
 """
@@ -228,7 +232,7 @@ def build_input(name: str, cells: int, dim: int = 3, numbering: str = "rows") ->
         bottom=slab.format(lo="INF", hi=f"$(v_lo+{0.25 * D})")))
     parts.append(spec["after"].format(**values))
     integrator = spec.get("integrator", "nve")
-    parts.append(LOADING.format(damping=spec["damping"], skin=0.1 * D, dt=p["dt"],
+    parts.append(LOADING.format(damping=spec["damping"], skin=0.1 * D, cut=1.1 * D, dt=p["dt"],
                                 vtop=v[0], vbottom=v[1], integrator=integrator))
     if dim == 2 and integrator == "nve":
         parts.append("fix             plane all enforce2d\n")

@@ -186,7 +186,10 @@ pair_style      lattice/bond{pair_args}
 {b.pair_coeff()}
 # a small skin keeps the search for new contacts cheap
 neighbor        {0.1 * spec.d:.6g} bin
-neigh_modify    every 1 delay 0 check yes
+# neighbour and atom-sorting bins of one cutoff (LAMMPS' default of half a
+# cutoff takes 8x the bins in 3D, about 20 bytes per particle each)
+neigh_modify    every 1 delay 0 check yes binsize {1.1 * spec.d:.6g}
+atom_modify     sort 1000 {1.1 * spec.d:.6g}
 
 # extent of the block along the loading axis ({spec.axis})
 variable        lo0 equal $(bound(all,{spec.axis}min))

@@ -428,7 +428,10 @@ read_data       {data_file} fix grains NULL Grains
 pair_style      lattice/bond {diameter}{scene.pair_options().pair_style_args()}
 {b.pair_coeff()}
 neighbor        {0.1 * d:.6g} bin
-neigh_modify    every 1 delay 0 check yes
+# neighbour and atom-sorting bins of one cutoff (LAMMPS' default of half a
+# cutoff takes 8x the bins in 3D, about 20 bytes per particle each)
+neigh_modify    every 1 delay 0 check yes binsize {1.1 * d:.6g}
+atom_modify     sort 1000 {1.1 * d:.6g}
 variable        d equal {d!r}
 
 # ---- the deformation box: one row of wall particles per side ----
