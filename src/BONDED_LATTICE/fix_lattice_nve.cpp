@@ -96,6 +96,9 @@ void FixLatticeNVE::reset_dt()
 {
   dtv = update->dt;
   dtf = 0.5 * update->dt * force->ftm2v;
+  dtfm_type.assign(atom->ntypes + 1, 0.0);
+  if (atom->mass)
+    for (int t = 1; t <= atom->ntypes; t++) dtfm_type[t] = dtf / atom->mass[t];
 }
 
 /* ---------------------------------------------------------------------- */
@@ -149,22 +152,23 @@ template <bool PLANAR, bool ALL, bool RMASS, bool DRIFT> void FixLatticeNVE::kic
   double *__restrict const v = atom->v[0];
   const double *__restrict const f = atom->f[0];
   const double *const rmass = atom->rmass;
-  const double *const mass = atom->mass;
+  const double *const dtfm_of = dtfm_type.data();
+  const double dt = dtv;    // a local: the stores to x and v cannot change it
   const int *const type = atom->type;
   const int *const mask = atom->mask;
   const int nlocal = (igroup == atom->firstgroup) ? atom->nfirst : atom->nlocal;
 
   for (int i = 0; i < nlocal; i++) {
     if (!ALL && !(mask[i] & groupbit)) continue;
-    const double dtfm = dtf / (RMASS ? rmass[i] : mass[type[i]]);
+    const double dtfm = RMASS ? dtf / rmass[i] : dtfm_of[type[i]];
     const int k = 3 * i;
     v[k] += dtfm * f[k];
     v[k + 1] += dtfm * f[k + 1];
     if (!PLANAR) v[k + 2] += dtfm * f[k + 2];
     if (DRIFT) {
-      x[k] += dtv * v[k];
-      x[k + 1] += dtv * v[k + 1];
-      if (!PLANAR) x[k + 2] += dtv * v[k + 2];
+      x[k] += dt * v[k];
+      x[k + 1] += dt * v[k + 1];
+      if (!PLANAR) x[k + 2] += dt * v[k + 2];
     }
   }
 }
@@ -185,18 +189,19 @@ template <bool PLANAR, bool RMASS> void FixLatticeNVE::drift_measured()
   const double *__restrict const f = atom->f[0];
   double *__restrict const disp = store->displacements();
   const double *const rmass = atom->rmass;
-  const double *const mass = atom->mass;
+  const double *const dtfm_of = dtfm_type.data();
+  const double dt = dtv;    // a local: the stores to x and v cannot change it
   const int *const type = atom->type;
   const int nlocal = atom->nlocal;
   // an unstable run: a step longer than the pair style's limit (or NaN)
   const double cap = (store->step_limit > 0.0) ? store->step_limit : HUGE_VAL;
   int ok = 1;
   for (int i = 0; i < nlocal; i++) {
-    const double dtfm = dtf / (RMASS ? rmass[i] : mass[type[i]]);
+    const double dtfm = RMASS ? dtf / rmass[i] : dtfm_of[type[i]];
     for (int k = 3 * i; k < 3 * i + DIM; k++) {
       v[k] += dtfm * f[k];
       const double old = x[k];
-      x[k] = old + dtv * v[k];
+      x[k] = old + dt * v[k];
       const double step = x[k] - old;
       disp[k] = step;
       ok &= (std::fabs(step) <= cap);

@@ -15,6 +15,8 @@ FixStyle(lattice/nve,FixLatticeNVE);
 
 #include "fix.h"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class FixLatticeNVE : public Fix {
@@ -28,6 +30,9 @@ class FixLatticeNVE : public Fix {
 
  protected:
   double dtv, dtf;
+  // dtf / mass of each atom type (per-type masses): the same quotient fix nve
+  // forms per atom, formed once per run instead of once per atom and step
+  std::vector<double> dtfm_type;
 
   // PLANAR: x and y only; ALL: group all, no mask test; RMASS: per-atom
   // mass; DRIFT: also x += dt v (initial_integrate)
