@@ -45,6 +45,8 @@ static constexpr double BIG = 1.0e300;
 #define RARE(cond) __builtin_expect(static_cast<bool>(cond), 0)
 // the largest maxslot: the force loop keeps per-record scratch of this size
 static constexpr int MAX_RECORDS = 64;
+// records whose geometry the force loop forms in one pass (or one particle's, if more)
+static constexpr int BATCH_RECORDS = 24;
 // how many particles ahead the 3D force loop requests the records (4 to 16 measured
 // alike), and from which size of the spring array on (below, the requests cost more
 // than they save: 3D blocks of 11k particles (1.6 MB) lost 2-4%, 49k (7 MB) were
@@ -1434,258 +1436,277 @@ template <int F> void PairLatticeBond::eval()
   double q_break_n = 0.0, q_break_s = 0.0, q_friction = 0.0;
   const bool prefetch = !PLANAR && sizeof(double) * NC * stride * (double) nlocal >= PREFETCH_MIN_BYTES;
 
-  for (int i = 0; i < nlocal; i++) {
-    const int nr = nrec[i];
-    // the springs and partner indices of the particle PREFETCH_AHEAD places on
-    // are requested now, so that they arrive while this one computes: a large
-    // 3D block otherwise waits on memory for each particle's records
-    if (prefetch && i + PREFETCH_AHEAD < nlocal) {
-      const int ahead = i + PREFETCH_AHEAD, n = nrec[ahead];
-      prefetch_bytes(fix_store->springs(ahead), sizeof(double) * NC * n, true);
-      prefetch_bytes(partner_idx + (bigint) ahead * stride, sizeof(int) * n, false);
+  // geometry of a batch of particles first (about BATCH_RECORDS records), then
+  // their records: the lengths and directions come from one loop without
+  // indexing, which the compiler turns into paired square roots and divisions,
+  // and the processor overlaps them with the batch's record updates (a record
+  // otherwise waits for the divider, docs/performance.md); the positions do
+  // not change in between, so the bits are those of one record at a time
+  double sep[3][MAX_RECORDS], dist[MAX_RECORDS], dinv[MAX_RECORDS];
+  for (int i0 = 0; i0 < nlocal;) {
+    int nb = 0, i1 = i0;
+    for (; i1 < nlocal && (nb == 0 || nb + nrec[i1] <= BATCH_RECORDS); i1++) {
+      const int *__restrict idx = partner_idx + (bigint) i1 * stride;
+      const double xi = x[i1][0], yi = x[i1][1], zi = PLANAR ? 0.0 : x[i1][2];
+      for (int s = 0; s < nrec[i1]; s++, nb++) {
+        const int j = idx[s];
+        // a far-away partner: any finite values (unit length)
+        sep[0][nb] = (j < 0) ? 1.0 : xi - x[j][0];
+        sep[1][nb] = (j < 0) ? 0.0 : yi - x[j][1];
+        if (!PLANAR) sep[2][nb] = (j < 0) ? 0.0 : zi - x[j][2];
+      }
     }
-    if (!nr) continue;
-    double *__restrict spr = fix_store->springs(i);
-    LatticeBondState *__restrict st = fix_store->states(i);
-    const int *__restrict idx = partner_idx + (bigint) i * stride;
-    const double *__restrict factors = HETERO ? bond_factor.data() + (size_t) i * stride * 2 : nullptr;
-    const double xi = x[i][0], yi = x[i][1], zi = PLANAR ? 0.0 : x[i][2];
-    const double dxi = disp[i][0], dyi = disp[i][1], dzi = PLANAR ? 0.0 : disp[i][2];
-    const double radi = EQUAL ? 0.0 : radius[i];
-    const BondParams *prow = params[type[i]];
-    double fxi = 0.0, fyi = 0.0, fzi = 0.0;    // summed here: fewer stores in the loop
-
-    // the separations of all records first: their square roots and divisions
-    // are independent, so the processor overlaps them instead of each record
-    // waiting for its own (the loop is latency-bound, docs/performance.md)
-    double dist[MAX_RECORDS], dinv[MAX_RECORDS], unit[3][MAX_RECORDS];
-    for (int s = 0; s < nr; s++) {
-      const int j = idx[s];
-      const int jj = (j < 0) ? i : j;    // a far-away partner: any finite values
-      const double sx = xi - x[jj][0], sy = yi - x[jj][1], sz = PLANAR ? 0.0 : zi - x[jj][2];
-      const double rr = (j < 0) ? 1.0 : sqrt(sx * sx + sy * sy + sz * sz);
+    for (int k = 0; k < nb; k++) {
+      const double sx = sep[0][k], sy = sep[1][k], sz = PLANAR ? 0.0 : sep[2][k];
+      const double rr = sqrt(sx * sx + sy * sy + sz * sz);
       const double rinv = 1.0 / rr;
-      dist[s] = rr;
-      if (PLANAR) dinv[s] = rinv;
-      unit[0][s] = sx * rinv;
-      unit[1][s] = sy * rinv;
-      if (!PLANAR) unit[2][s] = sz * rinv;
+      dist[k] = rr;
+      dinv[k] = rinv;
+      sep[0][k] = sx * rinv;    // now the unit vector
+      sep[1][k] = sy * rinv;
+      if (!PLANAR) sep[2][k] = sz * rinv;
     }
-
-    for (int s = 0; s < nr; s++) {
-      const int j = idx[s];
-      if (RARE(j < 0)) continue;    // broken bond whose partner is far away
-      double *const sh = spr + s * NC;    // this record's spring
-      const BondParams &p_type = UNIFORM ? p_uniform : prow[type[j]];
-      // heterogeneous rock: this bond's own stiffness and strength
-      BondParams p_bond;
-      if (HETERO) p_bond = scaled_params(p_type, factors[2 * s], factors[2 * s + 1]);
-      const BondParams &p = HETERO ? p_bond : p_type;
-      const bool has_shear = SHEAR && (SHEAR_ALL || p.ks > 0.0);
-
-      // separation (for the tallies and the corotational frame), its length and direction
-      const double dx = xi - x[j][0], dy = yi - x[j][1], dz = PLANAR ? 0.0 : zi - x[j][2];
-      const double rr = dist[s];
-      const double nx = unit[0][s], ny = unit[1][s], nz = PLANAR ? 0.0 : unit[2][s];
-      const double touch = EQUAL ? touch_equal : radi + radius[j];    // rest length
-      const double xn = rr - touch;    // normal stretch, tension positive
-      // this step's relative displacement (dx minus its value at the last step)
-      const double ddx = dxi - disp[j][0], ddy = dyi - disp[j][1];
-      const double ddz = PLANAR ? 0.0 : dzi - disp[j][2];
-      // the increment the shear springs see: with shear_frame corotational
-      // without the pair's share of the local rigid rotation
-      double ux = ddx, uy = ddy, uz = ddz;
-      if (COROTATE) remove_rigid_rotation<PLANAR>(w[i], w[j], dx, dy, dz, ux, uy, uz);
-
-      // 2D: the tangential part of it along t = z x n = (-ny, nx)
-      // taken along the tangent at mid-step, which makes the update time-reversible:
-      // t_mid . u = (t . u) r / |d - u/2| = (t . u)(1 + (n . u) / (2 r)) to second order
-      const double dtan =
-          PLANAR ? (uy * nx - ux * ny) * (1.0 + 0.5 * (ux * nx + uy * ny) * dinv[s]) : 0.0;
-
-      int state = st[s];
-      if (RARE(state == LB_INTACT && xn > p.xb && can_break)) {
-        // tensile break: both springs let go
-        st[s] = LB_BROKEN_TENSION;
-        state = LB_BROKEN_TENSION;
-        if (TALLY) {
-          q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
-          q_break_s += PLANAR ? planar_release(sh, p.ks, dtan) : spring_release(sh, p.ks, ddx, ddy, ddz);
-          clear_spring<NC>(sh);
-        }
+    int base = 0;
+    for (int i = i0; i < i1; base += nrec[i], i++) {
+      const int nr = nrec[i];
+      // the springs and partner indices of the particle PREFETCH_AHEAD places on
+      // are requested now, so that they arrive while this one computes: a large
+      // 3D block otherwise waits on memory for each particle's records
+      if (prefetch && i + PREFETCH_AHEAD < nlocal) {
+        const int ahead = i + PREFETCH_AHEAD, n = nrec[ahead];
+        prefetch_bytes(fix_store->springs(ahead), sizeof(double) * NC * n, true);
+        prefetch_bytes(partner_idx + (bigint) ahead * stride, sizeof(int) * n, false);
       }
-      if (RARE(state != LB_INTACT && xn >= 0.0)) {
-        // open contact: no force, no memory
-        if (TALLY)
-          q_friction += PLANAR ? planar_release(sh, p.ks, dtan) : spring_release(sh, p.ks, ddx, ddy, ddz);
-        clear_spring<NC>(sh);
-        continue;
-      }
+      if (!nr) continue;
+      double *__restrict spr = fix_store->springs(i);
+      LatticeBondState *__restrict st = fix_store->states(i);
+      const int *__restrict idx = partner_idx + (bigint) i * stride;
+      const double *__restrict factors = HETERO ? bond_factor.data() + (size_t) i * stride * 2 : nullptr;
+      const double xi = x[i][0], yi = x[i][1], zi = PLANAR ? 0.0 : x[i][2];
+      const double dxi = disp[i][0], dyi = disp[i][1], dzi = PLANAR ? 0.0 : disp[i][2];
+      const double radi = EQUAL ? 0.0 : radius[i];
+      const BondParams *prow = params[type[i]];
+      double fxi = 0.0, fyi = 0.0, fzi = 0.0;    // summed here: fewer stores in the loop
+      const double *const rlen = dist + base;
+      const double *const rinvs = dinv + base;
+      const double *const unit[3] = {sep[0] + base, sep[1] + base, sep[2] + base};
 
-      const double fn = p.kn * xn;    // normal force, tension positive
-      double fsx = 0.0, fsy = 0.0, fsz = 0.0, es = 0.0;
+      for (int s = 0; s < nr; s++) {
+        const int j = idx[s];
+        if (RARE(j < 0)) continue;    // broken bond whose partner is far away
+        double *const sh = spr + s * NC;    // this record's spring
+        const BondParams &p_type = UNIFORM ? p_uniform : prow[type[j]];
+        // heterogeneous rock: this bond's own stiffness and strength
+        BondParams p_bond;
+        if (HETERO) p_bond = scaled_params(p_type, factors[2 * s], factors[2 * s + 1]);
+        const BondParams &p = HETERO ? p_bond : p_type;
+        const bool has_shear = SHEAR && (SHEAR_ALL || p.ks > 0.0);
 
-      if (state == LB_INTACT && !has_shear && p.fs0 - p.mu_p * fn < 0.0 && can_break) {
-        // no shear spring: the bond fails in shear only when its Coulomb
-        // limit itself becomes negative (tension above Fs0/mu_p)
-        st[s] = LB_BROKEN_SHEAR;
-        state = LB_BROKEN_SHEAR;
-        if (xn >= 0.0) {
-          if (TALLY)
+        // separation (for the tallies and the corotational frame), its length and direction
+        const double dx = xi - x[j][0], dy = yi - x[j][1], dz = PLANAR ? 0.0 : zi - x[j][2];
+        const double rr = rlen[s];
+        const double nx = unit[0][s], ny = unit[1][s], nz = PLANAR ? 0.0 : unit[2][s];
+        const double touch = EQUAL ? touch_equal : radi + radius[j];    // rest length
+        const double xn = rr - touch;    // normal stretch, tension positive
+        // this step's relative displacement (dx minus its value at the last step)
+        const double ddx = dxi - disp[j][0], ddy = dyi - disp[j][1];
+        const double ddz = PLANAR ? 0.0 : dzi - disp[j][2];
+        // the increment the shear springs see: with shear_frame corotational
+        // without the pair's share of the local rigid rotation
+        double ux = ddx, uy = ddy, uz = ddz;
+        if (COROTATE) remove_rigid_rotation<PLANAR>(w[i], w[j], dx, dy, dz, ux, uy, uz);
+
+        // 2D: the tangential part of it along t = z x n = (-ny, nx)
+        // taken along the tangent at mid-step, which makes the update time-reversible:
+        // t_mid . u = (t . u) r / |d - u/2| = (t . u)(1 + (n . u) / (2 r)) to second order
+        const double dtan =
+            PLANAR ? (uy * nx - ux * ny) * (1.0 + 0.5 * (ux * nx + uy * ny) * rinvs[s]) : 0.0;
+
+        int state = st[s];
+        if (RARE(state == LB_INTACT && xn > p.xb && can_break)) {
+          // tensile break: both springs let go
+          st[s] = LB_BROKEN_TENSION;
+          state = LB_BROKEN_TENSION;
+          if (TALLY) {
             q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
+            q_break_s += PLANAR ? planar_release(sh, p.ks, dtan) : spring_release(sh, p.ks, ddx, ddy, ddz);
+            clear_spring<NC>(sh);
+          }
+        }
+        if (RARE(state != LB_INTACT && xn >= 0.0)) {
+          // open contact: no force, no memory
+          if (TALLY)
+            q_friction += PLANAR ? planar_release(sh, p.ks, dtan) : spring_release(sh, p.ks, ddx, ddy, ddz);
+          clear_spring<NC>(sh);
           continue;
         }
-      }
 
-      // a frictionless contact (closed, mu_p = 0 everywhere) has no shear spring
-      if (PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
-        // 2D: the spring is a signed length along t, which turns with the
-        // pair, so it needs no projection and keeps its length exactly
-        const double s1 = sh[0];
-        double sig = s1 + dtan;
-        int broke_now = 0;
-        const double fs2 = p.ks * p.ks * sig * sig;
-        if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break)) {
+        const double fn = p.kn * xn;    // normal force, tension positive
+        double fsx = 0.0, fsy = 0.0, fsz = 0.0, es = 0.0;
+
+        if (state == LB_INTACT && !has_shear && p.fs0 - p.mu_p * fn < 0.0 && can_break) {
+          // no shear spring: the bond fails in shear only when its Coulomb
+          // limit itself becomes negative (tension above Fs0/mu_p)
           st[s] = LB_BROKEN_SHEAR;
           state = LB_BROKEN_SHEAR;
-          broke_now = 1;
-        }
-        if (RARE(state != LB_INTACT)) {
           if (xn >= 0.0) {
-            // broken in shear while in tension: the contact is open
-            if (TALLY) {
+            if (TALLY)
               q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
-              q_break_s += planar_heat(p.ks, s1, dtan, 0.0);
-            }
-            sh[0] = 0.0;
             continue;
           }
-          if (FRICTION) {
-            const double limit = -p.mu_p * fn;    // sliding friction of a contact
-            if (fs2 > limit * limit) {
-              const double slid = std::copysign(limit / p.ks, sig);
-              if (TALLY) {
-                const double q = planar_heat(p.ks, s1, dtan, slid);
-                if (broke_now) q_break_s += q;
-                else q_friction += q;
-              }
-              sig = slid;
-            }
-          } else {
-            // broke in shear just now: a frictionless contact keeps no spring
-            if (TALLY) q_break_s += planar_heat(p.ks, s1, dtan, 0.0);
-            sig = 0.0;
-          }
         }
-        sh[0] = sig;
-        // force on the owner -Ks sig t
-        fsx = p.ks * sig * ny;
-        fsy = -p.ks * sig * nx;
-        if (EVFLAG) es = 0.5 * p.ks * sig * sig;
-      } else if (!PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
-        double s0x = sh[0], s0y = sh[1], s0z = sh[2];
-        // shear_frame corotational: the spring turned with the pair's rotation
-        if (COROTATE) rotate_spring(w[i], w[j], s0x, s0y, s0z);
-        // the spring turned into the new tangent plane (its normal part
-        // dropped) plus the tangential part of this step's relative
-        // displacement, in one projection of their sum
-        const double sn = s0x * nx + s0y * ny + s0z * nz;
-        const double dn = ux * nx + uy * ny + uz * nz;
-        const double un = sn + dn;
-        double sx = (s0x + ux) - un * nx, sy = (s0y + uy) - un * ny, sz = (s0z + uz) - un * nz;
-        double s2 = sx * sx + sy * sy + sz * sz;
-        // the two parts (for the heat): the turned old spring and the increment
-        double s1x = s0x - sn * nx, s1y = s0y - sn * ny, s1z = s0z - sn * nz;
-        const double tx = ux - dn * nx, ty = uy - dn * ny, tz = uz - dn * nz;
-        if (RARE(sn * sn > 1.0e-12 * s2)) {
-          // the pair turned noticeably in one step (by more than about 1e-6
-          // rad): the turned spring keeps its length
-          const double old2 = s0x * s0x + s0y * s0y + s0z * s0z;
-          const double new2 = s1x * s1x + s1y * s1y + s1z * s1z;
-          if (new2 > 0.0) {
-            const double scale = sqrt(old2 / new2);
-            s1x *= scale;
-            s1y *= scale;
-            s1z *= scale;
-          }
-          sx = s1x + tx;
-          sy = s1y + ty;
-          sz = s1z + tz;
-          s2 = sx * sx + sy * sy + sz * sz;
-        }
-        int broke_now = 0;
-        const double fs2 = p.ks * p.ks * s2;
-        if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break)) {
-          st[s] = LB_BROKEN_SHEAR;
-          state = LB_BROKEN_SHEAR;
-          broke_now = 1;
-        }
-        if (RARE(state != LB_INTACT)) {
-          if (xn >= 0.0) {
-            // broken in shear while in tension: the contact is open
-            if (TALLY) {
-              const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, none[3] = {0.0, 0.0, 0.0};
-              q_break_n +=
-                  normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
-              q_break_s += shear_heat(p.ks, s1, t, none);
-            }
-            clear_spring<NC>(sh);
-            continue;
-          }
-          if (FRICTION) {
-            const double limit = -p.mu_p * fn;    // sliding friction of a contact
-            if (fs2 > limit * limit) {
-              const double scale = (s2 > 0.0) ? limit / (p.ks * sqrt(s2)) : 0.0;
-              sx *= scale;
-              sy *= scale;
-              sz *= scale;
-              if (TALLY) {
-                const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, s2[3] = {sx, sy, sz};
-                const double q = shear_heat(p.ks, s1, t, s2);
-                if (broke_now) q_break_s += q;
-                else q_friction += q;
-              }
-            }
-          } else {
-            // broke in shear just now: a frictionless contact keeps no spring
-            if (TALLY) {
-              const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, none[3] = {0.0, 0.0, 0.0};
-              q_break_s += shear_heat(p.ks, s1, t, none);
-            }
-            sx = sy = sz = 0.0;
-          }
-        }
-        sh[0] = sx;
-        sh[1] = sy;
-        sh[2] = sz;
-        fsx = -p.ks * sx;
-        fsy = -p.ks * sy;
-        fsz = -p.ks * sz;
-        if (EVFLAG) es = 0.5 * p.ks * (sx * sx + sy * sy + sz * sz);
-      } else if (has_shear) {
-        clear_spring<NC>(sh);    // a frictionless closed contact
-      }
 
-      // force on the owner i; the partner gets the opposite
-      const double fx = -fn * nx + fsx, fy = -fn * ny + fsy;
-      const double fz = PLANAR ? 0.0 : -fn * nz + fsz;
-      fxi += fx;
-      fyi += fy;
-      f[j][0] -= fx;
-      f[j][1] -= fy;
-      if (!PLANAR) {
-        fzi += fz;
-        f[j][2] -= fz;
-      }
+        // a frictionless contact (closed, mu_p = 0 everywhere) has no shear spring
+        if (PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
+          // 2D: the spring is a signed length along t, which turns with the
+          // pair, so it needs no projection and keeps its length exactly
+          const double s1 = sh[0];
+          double sig = s1 + dtan;
+          int broke_now = 0;
+          const double fs2 = p.ks * p.ks * sig * sig;
+          if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break)) {
+            st[s] = LB_BROKEN_SHEAR;
+            state = LB_BROKEN_SHEAR;
+            broke_now = 1;
+          }
+          if (RARE(state != LB_INTACT)) {
+            if (xn >= 0.0) {
+              // broken in shear while in tension: the contact is open
+              if (TALLY) {
+                q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
+                q_break_s += planar_heat(p.ks, s1, dtan, 0.0);
+              }
+              sh[0] = 0.0;
+              continue;
+            }
+            if (FRICTION) {
+              const double limit = -p.mu_p * fn;    // sliding friction of a contact
+              if (fs2 > limit * limit) {
+                const double slid = std::copysign(limit / p.ks, sig);
+                if (TALLY) {
+                  const double q = planar_heat(p.ks, s1, dtan, slid);
+                  if (broke_now) q_break_s += q;
+                  else q_friction += q;
+                }
+                sig = slid;
+              }
+            } else {
+              // broke in shear just now: a frictionless contact keeps no spring
+              if (TALLY) q_break_s += planar_heat(p.ks, s1, dtan, 0.0);
+              sig = 0.0;
+            }
+          }
+          sh[0] = sig;
+          // force on the owner -Ks sig t
+          fsx = p.ks * sig * ny;
+          fsy = -p.ks * sig * nx;
+          if (EVFLAG) es = 0.5 * p.ks * sig * sig;
+        } else if (!PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
+          double s0x = sh[0], s0y = sh[1], s0z = sh[2];
+          // shear_frame corotational: the spring turned with the pair's rotation
+          if (COROTATE) rotate_spring(w[i], w[j], s0x, s0y, s0z);
+          // the spring turned into the new tangent plane (its normal part
+          // dropped) plus the tangential part of this step's relative
+          // displacement, in one projection of their sum
+          const double sn = s0x * nx + s0y * ny + s0z * nz;
+          const double dn = ux * nx + uy * ny + uz * nz;
+          const double un = sn + dn;
+          double sx = (s0x + ux) - un * nx, sy = (s0y + uy) - un * ny, sz = (s0z + uz) - un * nz;
+          double s2 = sx * sx + sy * sy + sz * sz;
+          // the two parts (for the heat): the turned old spring and the increment
+          double s1x = s0x - sn * nx, s1y = s0y - sn * ny, s1z = s0z - sn * nz;
+          const double tx = ux - dn * nx, ty = uy - dn * ny, tz = uz - dn * nz;
+          if (RARE(sn * sn > 1.0e-12 * s2)) {
+            // the pair turned noticeably in one step (by more than about 1e-6
+            // rad): the turned spring keeps its length
+            const double old2 = s0x * s0x + s0y * s0y + s0z * s0z;
+            const double new2 = s1x * s1x + s1y * s1y + s1z * s1z;
+            if (new2 > 0.0) {
+              const double scale = sqrt(old2 / new2);
+              s1x *= scale;
+              s1y *= scale;
+              s1z *= scale;
+            }
+            sx = s1x + tx;
+            sy = s1y + ty;
+            sz = s1z + tz;
+            s2 = sx * sx + sy * sy + sz * sz;
+          }
+          int broke_now = 0;
+          const double fs2 = p.ks * p.ks * s2;
+          if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break)) {
+            st[s] = LB_BROKEN_SHEAR;
+            state = LB_BROKEN_SHEAR;
+            broke_now = 1;
+          }
+          if (RARE(state != LB_INTACT)) {
+            if (xn >= 0.0) {
+              // broken in shear while in tension: the contact is open
+              if (TALLY) {
+                const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, none[3] = {0.0, 0.0, 0.0};
+                q_break_n +=
+                    normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
+                q_break_s += shear_heat(p.ks, s1, t, none);
+              }
+              clear_spring<NC>(sh);
+              continue;
+            }
+            if (FRICTION) {
+              const double limit = -p.mu_p * fn;    // sliding friction of a contact
+              if (fs2 > limit * limit) {
+                const double scale = (s2 > 0.0) ? limit / (p.ks * sqrt(s2)) : 0.0;
+                sx *= scale;
+                sy *= scale;
+                sz *= scale;
+                if (TALLY) {
+                  const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, s2[3] = {sx, sy, sz};
+                  const double q = shear_heat(p.ks, s1, t, s2);
+                  if (broke_now) q_break_s += q;
+                  else q_friction += q;
+                }
+              }
+            } else {
+              // broke in shear just now: a frictionless contact keeps no spring
+              if (TALLY) {
+                const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, none[3] = {0.0, 0.0, 0.0};
+                q_break_s += shear_heat(p.ks, s1, t, none);
+              }
+              sx = sy = sz = 0.0;
+            }
+          }
+          sh[0] = sx;
+          sh[1] = sy;
+          sh[2] = sz;
+          fsx = -p.ks * sx;
+          fsy = -p.ks * sy;
+          fsz = -p.ks * sz;
+          if (EVFLAG) es = 0.5 * p.ks * (sx * sx + sy * sy + sz * sz);
+        } else if (has_shear) {
+          clear_spring<NC>(sh);    // a frictionless closed contact
+        }
 
-      if (EVFLAG) {
-        const double e = eflag_either ? 0.5 * fn * xn + es : 0.0;
-        ev_tally_xyz(i, j, nlocal, 1, e, 0.0, fx, fy, fz, dx, dy, dz);
+        // force on the owner i; the partner gets the opposite
+        const double fx = -fn * nx + fsx, fy = -fn * ny + fsy;
+        const double fz = PLANAR ? 0.0 : -fn * nz + fsz;
+        fxi += fx;
+        fyi += fy;
+        f[j][0] -= fx;
+        f[j][1] -= fy;
+        if (!PLANAR) {
+          fzi += fz;
+          f[j][2] -= fz;
+        }
+
+        if (EVFLAG) {
+          const double e = eflag_either ? 0.5 * fn * xn + es : 0.0;
+          ev_tally_xyz(i, j, nlocal, 1, e, 0.0, fx, fy, fz, dx, dy, dz);
+        }
       }
+      f[i][0] += fxi;
+      f[i][1] += fyi;
+      if (!PLANAR) f[i][2] += fzi;
     }
-    f[i][0] += fxi;
-    f[i][1] += fyi;
-    if (!PLANAR) f[i][2] += fzi;
+    i0 = i1;
   }
   if (TALLY) {
     heat[0] += q_break_n;
