@@ -75,3 +75,47 @@ def test_twice_the_critical_time_step_is_stopped_with_step_and_atom(tmp_path, in
     assert float(message.group(2)) > 0.1 * 0.5 * D
     assert "the integration is unstable" in result.output
     assert "nan" not in result.output.lower().split("error")[0][-3000:]
+
+
+# 3D, fcc, atom_style atomic with one mass: fix lattice/nve on all atoms takes the
+# one-stream loop over x, v and f; its step test must stop a run far above the
+# critical time step as the per-atom loops do (four times the Gershgorin bound,
+# which is 0.6-0.9 of the exact limit)
+D3_MASS = 2650.0 * math.pi / 6.0 * D**3          # quartz sphere
+D3_KN, D3_KS = 4.6794e7, 8.0679e6
+DECK_3D = f"""
+units           si
+atom_style      atomic
+newton          on
+dimension       3
+boundary        f f f
+lattice         fcc {D * 2 ** 0.5}
+region          box block -3 8 -3 8 -3 8
+create_box      1 box
+region          block block 0 5 0 5 0 5
+create_atoms    1 region block
+mass            1 {D3_MASS}
+pair_style      lattice/bond diameter {D}
+pair_coeff      1 1 {D3_KN} {D3_KS} 1.7037e-07 18.452 0.39645
+variable        vx atom 0.01*normal(0,1,8411)
+variable        vy atom 0.01*normal(0,1,2203)
+variable        vz atom 0.01*normal(0,1,5113)
+velocity        all set v_vx v_vy v_vz units box
+fix             nve all lattice/nve
+thermo          100
+timestep        ${{dt}}
+run             2000
+"""
+
+
+def test_3d_one_mass_stream_stops_an_unstable_run(tmp_path):
+    # Gershgorin bound of an interior fcc particle (12 bonds)
+    dt_crit = critical_time_step(D3_MASS, D3_KN, D3_KS, 3)
+    result = run_deck(DECK_3D, tmp_path, args=["-var", "dt", repr(4.0 * dt_crit)])
+    assert "measures the steps" in result.output
+    assert result.returncode != 0
+    message = re.search(r"atom (\d+) moved ([0-9.eE+-]+) in one time step at step (\d+)",
+                        result.output)
+    assert message, result.output[-2000:]
+    assert 0 < int(message.group(3)) < 2000
+    assert float(message.group(2)) > 0.1 * 0.5 * D

@@ -33,6 +33,7 @@ class FixLatticeNVE : public Fix {
   // dtf / mass of each atom type (per-type masses): the same quotient fix nve
   // forms per atom, formed once per run instead of once per atom and step
   std::vector<double> dtfm_type;
+  bool one_mass = false;    // per-type masses, all equal
 
   // PLANAR: x and y only; ALL: group all, no mask test; RMASS: per-atom
   // mass; DRIFT: also x += dt v (initial_integrate)
@@ -43,6 +44,7 @@ class FixLatticeNVE : public Fix {
   class FixLatticeBondStore *store;
   class FixLatticeBondStore *measuring_store() const;
   template <bool PLANAR, bool RMASS> void drift_measured();
+  template <bool DRIFT, bool MEASURE> void stream();
 };
 
 }    // namespace LAMMPS_NS
