@@ -21,18 +21,21 @@ import time
 
 import numpy as np
 
-# bytes per record (shear spring 3 doubles, partner tag, state) and per particle
-RECORD = 32
+# bytes per record that the force loop reads every step: the shear spring (3
+# doubles in 3D, a signed length in 2D; read and written), the state (1 byte,
+# read) and the pair style's partner index (4 bytes); the partner tags are read
+# only after reneighbouring
+SPRING = {3: 24, 2: 8}
 RECORDS_PER_PARTICLE = {3: 6, 2: 3}
 
 
 def loop_bytes(dim: int) -> int:
     """Bytes the force loop moves per particle-step, counting every array once:
-    records read and written, a 4-byte partner index per record, the particle's
-    position and displacement read, its force read and written (the partners'
-    values are the same arrays, reached through the cache)."""
+    records read and written, the particle's position and displacement read
+    (triples in 2D too), its force read and written (the partners' values are
+    the same arrays, reached through the cache)."""
     n = RECORDS_PER_PARTICLE[dim]
-    return n * (2 * RECORD + 4) + 24 + 24 + 2 * 24
+    return n * (2 * SPRING[dim] + 1 + 4) + 24 + 24 + 2 * 24
 
 
 def triad_bandwidth(nbytes: int, repeats: int = 5) -> float:
