@@ -36,6 +36,29 @@ def lmp_instance():
     lmp.close()
 
 
+def lattice_block(dim: int, box: str, block: str, types: int = 1) -> str:
+    """Dimension, boundary, lattice, box and filled region of a block of 1 mm particles:
+    hexagonal in 2D (periodic along z), fcc in 3D (free). box, block: ``xlo xhi ylo yhi``
+    (2D) or ``xlo xhi ylo yhi zlo zhi`` (3D), in lattice units."""
+    if dim == 2:
+        return f"""
+dimension       2
+boundary        f f p
+lattice         hex 0.001
+region          box block {box} -0.5 0.5
+create_box      {types} box
+region          block block {block} -0.5 0.5
+"""
+    return f"""
+dimension       3
+boundary        f f f
+lattice         fcc {1.0e-3 * 2 ** 0.5}
+region          box block {box}
+create_box      {types} box
+region          block block {block}
+"""
+
+
 # quartz bond parameters in 2D (per metre of thickness, d = 1 mm): Kn Ks Xb Fs0 mu_p
 QUARTZ_2D = "6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915"
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import run_deck
+from conftest import lattice_block, run_deck
 
 D = 1.0e-3
 MASS = {2: 2.295e-3, 3: 3.747e-6}
@@ -24,24 +24,8 @@ COEFFS = {2: "6.5874e10 2.3715e10 1.9011e-7 1.1e4 0.23915",
           3: "4.6794e7 8.0679e6 1.7037e-7 5.5 0.39645"}
 WALL_KN = {2: 1.3e11, 3: 9.4e7}
 
-LATTICE = {
-    2: f"""
-dimension       2
-boundary        f f p
-lattice         hex {D}
-region          box block -4 16 -4 14 -0.5 0.5
-create_box      2 box
-region          block block 0 12 0 10 -0.5 0.5
-""",
-    3: f"""
-dimension       3
-boundary        f f f
-lattice         fcc {D * 2 ** 0.5}
-region          box block -4 9 -4 9 -4 9
-create_box      2 box
-region          block block 0 4 0 4 0 4
-""",
-}
+LATTICE = {2: lattice_block(2, "-4 16 -4 14", "0 12 0 10", types=2),
+           3: lattice_block(3, "-4 9 -4 9 -4 9", "0 4 0 4 0 4", types=2)}
 
 
 def particles(style: str, dim: int, masses: tuple[float, float] | None = None) -> str:

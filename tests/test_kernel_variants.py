@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from conftest import lattice_block
 
 D = 1.0e-3
 # quartz bond parameters (2D per metre of thickness, 3D; REFERENCE.md) with a
@@ -21,26 +22,10 @@ KN2, KS2, XB2, FS2, MU2 = 6.5874e10, 2.3715e10, 1.9011e-7, 1.1e4, 0.23915
 KN3, KS3, XB3, FS3, MU3 = 4.6794e7, 8.0679e6, 1.7037e-7, 5.5, 0.39645
 
 LATTICE = {
-    2: f"""
-dimension       2
-boundary        f f p
-lattice         hex {D}
-region          box block -4 16 -4 14 -0.5 0.5
-create_box      2 box
-region          block block 0 12 0 10 -0.5 0.5
-create_atoms    1 region block
-set             type 1 mass 2.295e-3
-""",
-    3: f"""
-dimension       3
-boundary        f f f
-lattice         fcc {D * 2 ** 0.5}
-region          box block -4 10 -4 10 -4 10
-create_box      2 box
-region          block block 0 6 0 6 0 6
-create_atoms    1 region block
-set             type 1 mass 3.747e-6
-""",
+    2: lattice_block(2, "-4 16 -4 14", "0 12 0 10", types=2)
+    + "create_atoms    1 region block\nset             type 1 mass 2.295e-3\n",
+    3: lattice_block(3, "-4 10 -4 10 -4 10", "0 6 0 6 0 6", types=2)
+    + "create_atoms    1 region block\nset             type 1 mass 3.747e-6\n",
 }
 
 # random velocities on a simple shear: bonds break in tension and in shear,

@@ -9,7 +9,7 @@ import re
 
 import pytest
 from bonded_lattice.conversion import critical_time_step
-from conftest import block_2d_deck, run_deck
+from conftest import block_2d_deck, lattice_block, run_deck
 
 D = 1.0e-3
 MASS = 2.295e-3                        # quartz, 2D, per metre of thickness
@@ -87,13 +87,7 @@ DECK_3D = f"""
 units           si
 atom_style      atomic
 newton          on
-dimension       3
-boundary        f f f
-lattice         fcc {D * 2 ** 0.5}
-region          box block -3 8 -3 8 -3 8
-create_box      1 box
-region          block block 0 5 0 5 0 5
-create_atoms    1 region block
+{lattice_block(3, "-3 8 -3 8 -3 8", "0 5 0 5 0 5")}create_atoms    1 region block
 mass            1 {D3_MASS}
 pair_style      lattice/bond diameter {D}
 pair_coeff      1 1 {D3_KN} {D3_KS} 1.7037e-07 18.452 0.39645

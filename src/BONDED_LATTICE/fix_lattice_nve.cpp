@@ -67,7 +67,7 @@ void FixLatticeNVE::init()
 /* ----------------------------------------------------------------------
    the record store of pair_style lattice/bond if this fix may measure each
    atom's displacement over the step while it moves it, else nullptr.  The
-   store's own pass (disp = x - xlast) then has nothing left to do.  Only
+   store's own pass (x - last position) then has nothing left to do.  Only
    when this fix moves every atom and nothing else moves any between two
    force evaluations: no other integrator or position-changing fix
    (initial/post-integrate hooks), no box deformation remapping atoms, and
@@ -151,6 +151,16 @@ void FixLatticeNVE::dispatch(bool drift)
 }
 
 /* ----------------------------------------------------------------------
+   the longest step along an axis that is not an instability (the pair
+   style's limit; a longer one, or NaN, makes the store report the atom)
+------------------------------------------------------------------------- */
+
+double FixLatticeNVE::step_cap() const
+{
+  return (store->step_limit > 0.0) ? store->step_limit : HUGE_VAL;
+}
+
+/* ----------------------------------------------------------------------
    3D, group all, one mass: the half kick (and with DRIFT the drift, with
    MEASURE measuring the steps as drift_measured does) over the components
    as one stream, without a per-atom mass or mask; the compiler vectorises
@@ -166,7 +176,7 @@ template <bool DRIFT, bool MEASURE> void FixLatticeNVE::stream()
   double *__restrict const disp = MEASURE ? store->displacements() : nullptr;
   const double dtfm = dtfm_type[1], dt = dtv;
   const int n = 3 * atom->nlocal;
-  const double cap = (MEASURE && store->step_limit > 0.0) ? store->step_limit : HUGE_VAL;
+  const double cap = MEASURE ? step_cap() : HUGE_VAL;
   int bad = 0;
   for (int k = 0; k < n; k++) {
     v[k] += dtfm * f[k];
@@ -234,8 +244,7 @@ template <bool PLANAR, bool RMASS> void FixLatticeNVE::drift_measured()
   const double dt = dtv;    // a local: the stores to x and v cannot change it
   const int *const type = atom->type;
   const int nlocal = atom->nlocal;
-  // an unstable run: a step longer than the pair style's limit (or NaN)
-  const double cap = (store->step_limit > 0.0) ? store->step_limit : HUGE_VAL;
+  const double cap = step_cap();
   int ok = 1;
   for (int i = 0; i < nlocal; i++) {
     const double dtfm = RMASS ? dtf / rmass[i] : dtfm_of[type[i]];

@@ -45,6 +45,7 @@ class FixLatticeNVE : public Fix {
   class FixLatticeBondStore *measuring_store() const;
   template <bool PLANAR, bool RMASS> void drift_measured();
   template <bool DRIFT, bool MEASURE> void stream();
+  double step_cap() const;    // longest step that is not an instability
 };
 
 }    // namespace LAMMPS_NS

@@ -1562,13 +1562,10 @@ template <int F> void PairLatticeBond::eval()
           // pair, so it needs no projection and keeps its length exactly
           const double s1 = sh[0];
           double sig = s1 + dtan;
-          int broke_now = 0;
           const double fs2 = p.ks * p.ks * sig * sig;
-          if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break)) {
-            st[s] = LB_BROKEN_SHEAR;
-            state = LB_BROKEN_SHEAR;
-            broke_now = 1;
-          }
+          const bool broke_now =
+              state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break);
+          if (broke_now) state = st[s] = LB_BROKEN_SHEAR;
           if (RARE(state != LB_INTACT)) {
             if (xn >= 0.0) {
               // broken in shear while in tension: the contact is open
@@ -1632,13 +1629,10 @@ template <int F> void PairLatticeBond::eval()
             sz = s1z + tz;
             s2 = sx * sx + sy * sy + sz * sz;
           }
-          int broke_now = 0;
           const double fs2 = p.ks * p.ks * s2;
-          if (state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break)) {
-            st[s] = LB_BROKEN_SHEAR;
-            state = LB_BROKEN_SHEAR;
-            broke_now = 1;
-          }
+          const bool broke_now =
+              state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break);
+          if (broke_now) state = st[s] = LB_BROKEN_SHEAR;
           if (RARE(state != LB_INTACT)) {
             if (xn >= 0.0) {
               // broken in shear while in tension: the contact is open
