@@ -68,6 +68,9 @@ class Lattice:
         particles plus a margin on each side so that walls and fixes fit
         (2D: z from -d/2 to d/2, meant to be periodic).
     types: (n,) atom types, 1 by default.
+    tilt: the tilt factors (xy, xz, yz) of a triclinic box, or None for an
+        orthogonal one (:mod:`bonded_lattice.periodic` makes periodic cells
+        whose edges are lattice vectors).
     """
 
     positions: np.ndarray
@@ -75,6 +78,7 @@ class Lattice:
     dim: int
     box: np.ndarray
     types: np.ndarray = field(default=None)  # type: ignore[assignment]
+    tilt: tuple[float, float, float] | None = None
 
     def __post_init__(self) -> None:
         self.d = float(self.d)
@@ -430,6 +434,11 @@ def write_data(lattice: Lattice, path: str | Path, mass: float,
         f"{box[0][0]!r} {box[0][1]!r} xlo xhi",
         f"{box[1][0]!r} {box[1][1]!r} ylo yhi",
         f"{box[2][0]!r} {box[2][1]!r} zlo zhi",
+    ]
+    if lattice.tilt is not None:
+        xy, xz, yz = (float(t) for t in lattice.tilt)
+        lines.append(f"{xy!r} {xz!r} {yz!r} xy xz yz")
+    lines += [
         "",
     ]
     types, positions = lattice.types.tolist(), lattice.positions.tolist()

@@ -54,6 +54,8 @@ FixLatticeBondStore::FixLatticeBondStore(LAMMPS *lmp, int narg, char **arg) :
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
   for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+  for (int k = 0; k < 6; k++) h_eval[k] = domain->h[k];
+  boxstep = BoxStep{false, 0, 0, 0, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
 }
 
 /* ---------------------------------------------------------------------- */
@@ -120,6 +122,44 @@ void FixLatticeBondStore::positions_to_motion()
 void FixLatticeBondStore::end_evaluation()
 {
   if (step_from_pass) positions_to_motion();
+  for (int k = 0; k < 6; k++) h_eval[k] = domain->h[k];
+}
+
+/* ----------------------------------------------------------------------
+   the change of the periodic box since the last force evaluation (see
+   BoxStep).  A tilt that differs from the last one by about a whole period
+   was flipped (fix deform flip yes; a box cannot deform by half a period in
+   one step): the flip is undone by adding the period back, so that the
+   change is the deformation alone
+------------------------------------------------------------------------- */
+
+void FixLatticeBondStore::form_box_step()
+{
+  const double *h = domain->h;
+  BoxStep &b = boxstep;
+  b.k = b.l = b.m = 0;
+  double xy = h[5], yz = h[3], xz = h[4];
+  if (domain->triclinic) {
+    if (domain->xperiodic) {
+      b.k = (int) std::lround((h_eval[5] - xy) / h[0]);
+      xy += b.k * h[0];
+    }
+    if (domain->yperiodic) {
+      b.m = (int) std::lround((h_eval[3] - yz) / h[1]);
+      yz += b.m * h[1];
+      xz += b.m * xy;
+    }
+    if (domain->xperiodic) {
+      b.l = (int) std::lround((h_eval[4] - xz) / h[0]);
+      xz += b.l * h[0];
+    }
+  }
+  const double now[6] = {h[0], h[1], h[2], yz, xz, xy};
+  b.moved = false;
+  for (int k = 0; k < 6; k++) {
+    b.d[k] = now[k] - h_eval[k];
+    if (b.d[k] != 0.0) b.moved = true;
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -267,6 +307,7 @@ void FixLatticeBondStore::set_maxslot(int n)
 int FixLatticeBondStore::update_displacements(double limit)
 {
   const int nlocal = atom->nlocal;
+  form_box_step();
   // already measured by the integrator this step: only the test is left
   if (integrated())
     return (nlocal == 0 || limit <= 0.0 || integrated_ok) ? -1 : first_beyond(limit, domain->dimension);
@@ -485,20 +526,23 @@ int FixLatticeBondStore::maxsize_restart()
 }
 
 /* ----------------------------------------------------------------------
-   global part: format, whether the bonds exist, maxslot, shear layout.
+   global part: format, whether the bonds exist, maxslot, shear layout, the
+   box of the last force evaluation (whose positions the atoms' records hold).
    Files of the first format (records with the old separation) start with
    the bonds_created flag, 0 or 1, and are rejected; files of the second
-   format hold shear vectors, which a 2D run turns into scalars
+   format hold shear vectors, which a 2D run turns into scalars; files of the
+   third have no box (the box read with them is taken for it)
 ------------------------------------------------------------------------- */
 
 void FixLatticeBondStore::write_restart(FILE *fp)
 {
   if (comm->me == 0) {
-    double list[4] = {(double) RESTART_FORMAT, (double) bonds_created, (double) maxslot,
-                      (double) shear_layout};
+    double list[10] = {(double) RESTART_FORMAT, (double) bonds_created, (double) maxslot,
+                       (double) shear_layout};
+    for (int k = 0; k < 6; k++) list[4 + k] = h_eval[k];
     int size = sizeof(list);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), 4, fp);
+    fwrite(list, sizeof(double), 10, fp);
   }
 }
 
@@ -508,13 +552,14 @@ void FixLatticeBondStore::restart(char *buf)
 {
   auto list = (double *) buf;
   const int format = static_cast<int>(list[0]);
-  if (format != RESTART_FORMAT && format != 2)
+  if (format < 2 || format > RESTART_FORMAT)
     error->all(FLERR, "This restart file holds pair_style lattice/bond records in format {} "
-               "(an older BONDED_LATTICE version); this version reads formats 2 and {}. Rerun "
+               "(an {} BONDED_LATTICE version); this version reads formats 2 to {}. Rerun "
                "the model from its data file, or write the restart again with the version that "
-               "made it", format < 2 ? 1 : format, RESTART_FORMAT);
+               "made it", format < 2 ? 1 : format, format < 2 ? "older" : "newer", RESTART_FORMAT);
   bonds_created = static_cast<int>(list[1]);
   set_shear_layout((format == 2) ? SHEAR_VECTOR : static_cast<int>(list[3]));
+  for (int k = 0; k < 6; k++) h_eval[k] = (format >= 4) ? list[4 + k] : domain->h[k];
 }
 
 /* ---------------------------------------------------------------------- */

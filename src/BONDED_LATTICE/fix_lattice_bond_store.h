@@ -97,6 +97,29 @@ class FixLatticeBondStore : public Fix {
   // end of the force evaluation
   double *displacements() const { return motion; }
 
+  // the periodic box over the step.  A ghost is its owner shifted by a lattice
+  // vector of the box, p0 a + p1 b + p2 c (p = the first three values of LAMMPS'
+  // pbc of a communication swap); when the box changes between two force
+  // evaluations (change_box, fix deform, barostats) that shift changes with it,
+  // and the ghost moves by its owner's displacement plus shift(p).  A flip of a
+  // tilted box (fix deform flip) is a new choice of lattice vectors, not a
+  // deformation: it is undone first, with the integers of `unflip`, so that
+  // p refers to the same image before and after.  Formed by update_displacements()
+  struct BoxStep {
+    bool moved;        // the box differs from the last force evaluation's
+    int k, l, m;       // b = b' + k a', c = c' + m b' + (mk + l) a' undoes a flip
+    double d[6];       // change of the (unflipped) box: xprd, yprd, zprd, yz, xz, xy
+    // the change of the shift of an image with pbc (p0, p1, p2) of the current box
+    void shift(const int *p, double *out) const
+    {
+      const double q0 = p[0] - k * p[1] - l * p[2], q1 = p[1] - m * p[2], q2 = p[2];
+      out[0] = q0 * d[0] + q1 * d[5] + q2 * d[4];
+      out[1] = q1 * d[1] + q2 * d[3];
+      out[2] = q2 * d[2];
+    }
+  };
+  const BoxStep &box_step() const { return boxstep; }
+
   int maxslot;           // most records an atom may hold (pair_style keyword)
   int capacity;          // records stored per atom now: grows on demand up to maxslot
   int *nrec;             // number of records per atom
@@ -126,10 +149,16 @@ class FixLatticeBondStore : public Fix {
   bigint integrated_step;    // the step whose displacements fix lattice/nve measured, or -1
   int integrated_ok;         // and whether none of them was longer than step_limit
   int nmax_store;
+  // the box (domain->h: xprd, yprd, zprd, yz, xz, xy) at the last force
+  // evaluation, and its change to this one (see BoxStep)
+  double h_eval[6];
+  BoxStep boxstep;
+  void form_box_step();
   static constexpr int RECORD_DOUBLES = 5;    // packed size of one record (always 3 shear values)
   static constexpr int ATOM_DOUBLES = 4;      // count + last position (exchange: motion)
-  // 1: records with the old separation; 2: no shear layout (vectors)
-  static constexpr int RESTART_FORMAT = 3;
+  // 1: records with the old separation; 2: no shear layout (vectors); 3: no box
+  // of the last force evaluation
+  static constexpr int RESTART_FORMAT = 4;
   void positions_to_motion();    // motion = current positions (local atoms)
   void set_capacity(int n);
   void relayout(int new_capacity, int new_ncomp);

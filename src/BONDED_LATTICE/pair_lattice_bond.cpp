@@ -1765,12 +1765,15 @@ double PairLatticeBond::planar_release(const double *sh, double ks, double t)
 }
 
 /* ----------------------------------------------------------------------
-   forward communication: the step's displacements of the ghosts' owners
-   (a displacement needs no periodic shift), or their rotations
+   forward communication: the step's displacements of the ghosts' owners,
+   plus, for a ghost across a periodic boundary of a box that changed since
+   the last force evaluation, the change of its periodic shift (a ghost is its
+   owner plus a lattice vector of the box, which strains with the box: see
+   FixLatticeBondStore::BoxStep); or the owners' rotations, or their
+   heterogeneity properties
 ------------------------------------------------------------------------- */
 
-int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
-                                       int * /*pbc*/)
+int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
 {
   const double *disp = fix_store->displacements();
   const int dim = domain->dimension;    // 2D: the force loop reads x and y only
@@ -1786,6 +1789,14 @@ int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int /*pbc_
       buf[m++] = stiffness_factor ? stiffness_factor[list[k]] : 1.0;
       buf[m++] = grain_id ? (double) grain_id[list[k]] : 0.0;
     }
+    return m;
+  }
+  const FixLatticeBondStore::BoxStep &box = fix_store->box_step();
+  if (pbc_flag && box.moved) {
+    double shift[3];
+    box.shift(pbc, shift);
+    for (int k = 0; k < n; k++)
+      for (int c = 0; c < dim; c++) buf[m++] = disp[3 * list[k] + c] + shift[c];
     return m;
   }
   for (int k = 0; k < n; k++)
