@@ -41,8 +41,12 @@ MASS = {2: 2.295e-3, 3: 2.0e-6}
 # cells: the papers' orthogonal orientation and two turned, triclinic ones
 CELLS = {
     2: {"paper": paper_cell(2, 6), "turned": np.array([[3, 1], [-2, 4]]),
-        "turned2": np.array([[4, -1], [1, 3]])},
-    3: {"paper": paper_cell(3, 4), "turned": np.array([[3, 1, 0], [0, 3, 1], [1, 0, 3]])},
+        "turned2": np.array([[4, -1], [1, 3]]),
+        # tilt xy exactly half of x: the first increase of the tilt flips the box
+        "edge": np.array([[6, 0], [0, 6]])},
+    3: {"paper": paper_cell(3, 4), "turned": np.array([[3, 1, 0], [0, 3, 1], [1, 0, 3]]),
+        # tilt yz exactly half of y (and xy > 0): a yz flip, which moves xz by xy too
+        "edge": np.array([[4, 0, 0], [-1, 4, 0], [-2, 1, 3]])},
 }
 VOIGT = {2: [(0, 0), (1, 1), (0, 1)], 3: [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]}
 # LAMMPS' pressure vector order: xx yy zz xy xz yz
@@ -68,7 +72,8 @@ pair_coeff      * * {kn!r} {ks!r} {xb!r} {fs0!r} {mu!r}
 neighbor        {0.1 * D} bin
 compute         p all pressure NULL pair
 compute         bonds all lattice/bonds
-thermo_style    custom step c_p[1] c_p[2] c_p[3] c_p[4] c_p[5] c_p[6] c_bonds[1] c_bonds[2] c_bonds[3]
+thermo_style    custom step c_p[1] c_p[2] c_p[3] c_p[4] c_p[5] c_p[6] c_bonds[1] c_bonds[2] c_bonds[3] &
+                lx ly lz xy xz yz
 thermo_modify   format float %.17g
 timestep        1.0e-9
 fix             nve all lattice/nve
@@ -339,3 +344,124 @@ def test_barostat_stress_is_the_bond_sum(tmp_path, lmp_instance, dim, barostat, 
     sigma = -bond_pressure(cell, H_box, kn, ks, shear_frame == "corotational")
     assert sigma[0, 0] == pytest.approx(1e5, rel=0.3)
     assert abs(sigma[1, 1]) < 0.3 * 1e5
+
+
+def thermo_pressure(row: dict) -> tuple[np.ndarray, np.ndarray]:
+    """Pressure tensor and box matrix from the last row of a thermo table."""
+    P = np.zeros((3, 3))
+    for k, (a, b) in enumerate(P_ORDER):
+        P[a, b] = row[f"c_p[{k + 1}]"][-1]
+    h = np.array([[row["Lx"][-1], row["Xy"][-1], row["Xz"][-1]],
+                  [0.0, row["Ly"][-1], row["Yz"][-1]], [0.0, 0.0, row["Lz"][-1]]])
+    return P, h
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_flipped_box_keeps_the_bond_sum(tmp_path, lmp_instance, dim):
+    """fix deform flip yes: a tilt beyond half a period is replaced by the equivalent
+    tilt of the other sign (a new choice of the box's lattice vectors, not a
+    deformation).  Starting at exactly half a period, the first step flips the
+    box; the stress stays the bond sum of the strain, flipped back."""
+    cell, data = write_cell(tmp_path, dim, "edge")
+    lmp = lmp_instance
+    lmp.commands_string(deck(dim, data))
+    lmp.command("run 0 post no")
+    P0, h0 = pressure(lmp), box_matrix(lmp)
+    tilt = "xy" if dim == 2 else "yz"
+    a, b = (0, 1) if dim == 2 else (1, 2)
+    assert h0[a, b] == pytest.approx(0.5 * h0[a, a], rel=1e-12)
+    lmp.command(f"fix strain all deform 1 {tilt} erate {RATE!r} flip yes remap x")
+    lmp.command(f"run {NSTEPS} post no")
+    lmp.command("unfix strain")
+    lmp.command("run 0 post no")
+    h = box_matrix(lmp)
+    assert h[a, b] < 0.0, f"the box did not flip: {tilt} = {h[a, b]}"
+    # undo the flip: the tilt plus one period of the lower axis
+    h[:, b] += h[:, a]
+    H_box = h @ np.linalg.inv(h0) - np.eye(3)
+    assert abs(H_box[a, b]) == pytest.approx(STRAIN * h0[b, b] / h0[a, a] * h0[a, a] / h0[b, b],
+                                             rel=0.1)
+    kn, ks = BOND[dim][:2]
+    compare(pressure(lmp) - P0, bond_pressure(cell, H_box, kn, ks), dim,
+            f"{dim}D flip of {tilt}")
+
+
+def two_rank_deck(dim: int, data: str, restart: str | None = None) -> str:
+    """Each shear frame in turn: fix deform on every component (remap x) for NSTEPS
+    steps, then a force evaluation in the final box; optionally a restart file
+    half-way."""
+    rates = (f"x erate {RATE!r} y erate {-0.4 * RATE!r} xy erate {0.7 * RATE!r}" if dim == 2 else
+             f"x erate {RATE!r} y erate {-0.3 * RATE!r} z erate {0.5 * RATE!r} "
+             f"yz erate {0.2 * RATE!r} xz erate {-0.6 * RATE!r} xy erate {0.9 * RATE!r}")
+    text = ""
+    for frame in ("fixed", "corotational"):
+        half = (f"run {NSTEPS // 2} post no\nwrite_restart {restart}.{frame}\n"
+                f"run {NSTEPS // 2} post no" if restart else f"run {NSTEPS} post no")
+        text += deck(dim, data, frame) + f"""
+change_box      all triclinic
+run             0 post no
+fix             strain all deform 1 {rates} remap x
+{half}
+unfix           strain
+run             0 post no
+clear
+"""
+    return text
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("dim", [2, 3])
+def test_deforming_box_on_two_ranks_and_through_a_restart(tmp_path, dim):
+    """fix deform on every component on 1 and 2 ranks, and continued from a restart
+    file written half-way (whose records hold the positions of the last force
+    evaluation, before fix deform's last change of the box: the file carries that
+    box too): the bond sum of the strain each time, and the same numbers on 1 and
+    2 ranks and with and without the restart to round-off (1e-10 of the stress:
+    the ranks sum the bonds in another order)."""
+    cell, data = write_cell(tmp_path, dim, "turned")
+    kn, ks = BOND[dim][:2]
+    results = {}
+    for np_, restart in ((1, None), (2, None), (2, "half.restart")):
+        res = run_deck(two_rank_deck(dim, data, restart), tmp_path / f"np{np_}{bool(restart)}",
+                       np=np_)
+        assert res.returncode == 0, res.error
+        # per shear frame: run 0 (start), the deform run(s), run 0 (end)
+        per_frame = len(res.thermo) // 2
+        out = []
+        for k, frame in enumerate(("fixed", "corotational")):
+            P0, h0 = thermo_pressure(res.thermo[k * per_frame])
+            P, h = thermo_pressure(res.thermo[(k + 1) * per_frame - 1])
+            H_box = h @ np.linalg.inv(h0) - np.eye(3)
+            compare(P - P0, bond_pressure(cell, H_box, kn, ks, frame == "corotational"), dim,
+                    f"{dim}D {np_} ranks {frame} restart={restart}")
+            out.append(P - P0)
+        results[(np_, restart)] = out
+        if restart:
+            # the continuation: read the file written half-way, run the second half
+            for frame in ("fixed", "corotational"):
+                cont = f"""
+read_restart    {restart}.{frame}
+neighbor        {0.1 * D} bin
+compute         p all pressure NULL pair
+thermo_style    custom step c_p[1] c_p[2] c_p[3] c_p[4] c_p[5] c_p[6] lx ly lz xy xz yz
+thermo_modify   format float %.17g
+timestep        {DT}
+fix             nve all lattice/nve
+fix             strain all deform 1 {two_rank_deck(dim, data).split("deform 1 ")[1].split(" remap")[0]} remap x
+run             {NSTEPS // 2} post no
+unfix           strain
+run             0 post no
+"""
+                rc = run_deck(cont, res.workdir, np=2, name=f"in.cont.{frame}")
+                assert rc.returncode == 0, rc.error
+                P, _ = thermo_pressure(rc.thermo[-1])
+                P0, _ = thermo_pressure(res.thermo[(0 if frame == "fixed" else per_frame)])
+                results[(2, f"continued {frame}")] = P - P0
+    scale = np.abs(results[(1, None)][0]).max()
+    for k, frame in enumerate(("fixed", "corotational")):
+        assert np.abs(results[(2, None)][k] - results[(1, None)][k]).max() < 1e-10 * scale
+        # a run split in two (fix deform's erate of a tilt then refers to the box at the
+        # split: another path, by 2e-7 here) continued from its restart file: the same
+        cont, split = results[(2, f"continued {frame}")], results[(2, "half.restart")][k]
+        assert np.abs(cont - split).max() < 1e-10 * scale, \
+            f"{frame}: continued from the restart file\n{cont}\nsplit run\n{split}"

@@ -180,6 +180,11 @@ def periodic_cell(dim: int, d: float, cell: np.ndarray) -> PeriodicCell:
     frac = frac[np.all((frac > -eps) & (frac < 1.0 - eps), axis=1)]
     if len(frac) != count:
         raise RuntimeError(f"internal error: {len(frac)} sites for a cell of {count}")
+    # off the faces of the box, where rounding puts a particle on either side (and
+    # LAMMPS' read_restart of a triclinic box then misses it): a shift of a
+    # quarter of the mean site spacing along each edge
+    shift = 0.25 / count ** (1.0 / dim)
+    frac[:, :dim] = (frac[:, :dim] + shift) % 1.0
     positions = d * frac @ h.T
     if dim == 2:
         positions[:, 2] = 0.0
