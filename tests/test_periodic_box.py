@@ -465,3 +465,162 @@ run             0 post no
         cont, split = results[(2, f"continued {frame}")], results[(2, "half.restart")][k]
         assert np.abs(cont - split).max() < 1e-10 * scale, \
             f"{frame}: continued from the restart file\n{cont}\nsplit run\n{split}"
+
+
+# ---------------------------------------------------------------------------
+# breaking under fix deform: the conversion's strain, the weakest bonds first
+# ---------------------------------------------------------------------------
+
+def uniaxial_stress_deform(dim: int, h0: np.ndarray, rate: float) -> tuple[str, str, float]:
+    """fix deform arguments for uniaxial stress along the loading axis (y in 2D, z in
+    3D) at the strain rate ``rate``: the lateral axes contract by the conversion's
+    Poisson's ratio (in 2D the in-plane ratio nu / (1 - nu) of the plane-strain nu)
+    through variable lengths.  Returns the variables, the arguments and that ratio."""
+    rock = bond_to_rock(*BOND[dim], D, dim)
+    ratio = rock.nu / (1.0 - rock.nu) if dim == 2 else rock.nu
+    axis = "y" if dim == 2 else "z"
+    lateral = ["x"] if dim == 2 else ["x", "y"]
+    variables, args = "", f"{axis} erate {rate!r}"
+    for k, ax in enumerate(lateral):
+        length = float(h0[k, k])
+        variables += (f"variable d{ax} equal {-ratio * length * rate!r}*time\n"
+                      f"variable v{ax} equal {-ratio * length * rate!r}\n")
+        args += f" {ax} variable v_d{ax} v_v{ax}"
+    return variables, args, ratio
+
+
+def predicted_failure_strain(dim: int) -> float:
+    """Axial strain at the tensile strength: 2013 eq. 21 in 2D, Tu / E in 3D (the
+    lattice is linear up to its first break)."""
+    kn, ks, xb = BOND[dim][:3]
+    if dim == 2:
+        return tensile_failure_strain_2d(kn, ks, xb, D)
+    rock = bond_to_rock(*BOND[dim], D, dim)
+    return rock.Tu / rock.E
+
+
+FAIL_STEPS = 400      # steps to the predicted failure: the strain is resolved to 1/400
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("np_", [1, 2])
+@pytest.mark.parametrize("dim", [2, 3])
+def test_fix_deform_breaks_the_first_bonds_at_the_conversions_strain(tmp_path, dim, np_):
+    """A periodic cell in the papers' orientation pulled by fix deform ... erate in
+    uniaxial stress: no bond breaks before the strain the conversion predicts for the
+    tensile strength, all bonds of the most stretched directions break in the step
+    that reaches it (the lattice is homogeneous), and the lateral stress stays zero
+    (which checks the Poisson's ratio of the conversion)."""
+    cell = periodic_cell(dim, D, paper_cell(dim, 8 if dim == 2 else 4))
+    data = tmp_path / "cell.data"
+    write_data(cell.lattice, data, MASS[dim], atom_style="atomic")
+    eps_f = predicted_failure_strain(dim)
+    rate = eps_f / (FAIL_STEPS * DT)
+    h0 = np.diag(cell.lattice.box[:, 1] - cell.lattice.box[:, 0])
+    variables, args, _ = uniaxial_stress_deform(dim, h0, rate)
+    text = deck(dim, str(data)) + variables + f"""
+fix             strain all deform 1 {args} remap x
+thermo          1
+run             {int(1.2 * FAIL_STEPS)}
+"""
+    res = run_deck(text, tmp_path, np=np_)
+    assert res.returncode == 0, res.error
+    th = res.last_thermo()
+    broken = th["c_bonds[2]"] + th["c_bonds[3]"]
+    first = int(np.argmax(broken > 0))
+    assert broken[first] > 0, "nothing broke"
+    # the forces of step n see the box fix deform set at the end of step n - 1
+    strain_at_break = rate * DT * (th["Step"][first] - 1)
+    step_strain = rate * DT
+    assert abs(strain_at_break - eps_f) <= 1.01 * step_strain, \
+        f"first break at strain {strain_at_break:.6g}, conversion {eps_f:.6g}"
+    # every bond of the most stretched directions at once, and only those
+    axis = 1 if dim == 2 else 2
+    n = cell.bonds / np.linalg.norm(cell.bonds, axis=1)[:, None]
+    lateral_strain = -uniaxial_stress_deform(dim, h0, rate)[2]
+    stretch = n[:, axis] ** 2 + lateral_strain * (1.0 - n[:, axis] ** 2)
+    families = int(np.sum(stretch > (1.0 - 1e-9) * stretch.max()))
+    assert broken[first] == families * cell.lattice.n
+    assert th["c_bonds[3]"][first] == 0, "broke in shear, the conversion's mode is tension"
+    # uniaxial stress: the lateral pressure is zero to second order in the strain
+    # (measured 5e-5 of the axial stress at 2.6e-4 strain in 2D); an error dnu in the
+    # Poisson's ratio would leave about dnu of the axial stress: 1e-3 checks nu to 0.1%
+    before = first - 1
+    lateral = [th["c_p[1]"][before]] + ([th["c_p[2]"][before]] if dim == 3 else [])
+    axial = th[f"c_p[{axis + 1}]"][before]
+    assert max(abs(p) for p in lateral) < 1e-3 * abs(axial)
+
+
+def test_heterogeneous_periodic_lattice_breaks_its_weakest_bonds_not_the_seam(tmp_path,
+                                                                              lmp_instance):
+    """Random bond strengths (pair_style lattice/bond strength 0.5 1.5 seed N) in a
+    periodic 2D cell pulled in uniaxial stress: the first bonds to break are the
+    weakest of the most stretched directions, wherever they are; over several seeds
+    the bonds that break first cross the periodic seam no more often than the seam's
+    share of the bonds allows (with a box-change error, the seam bonds go first)."""
+    dim = 2
+    cell = periodic_cell(dim, D, paper_cell(dim, 16))
+    lat = cell.lattice
+    data = tmp_path / "cell.data"
+    write_data(lat, data, MASS[dim], atom_style="atomic")
+    eps_f = predicted_failure_strain(dim)
+    rate = eps_f / (FAIL_STEPS * DT)
+    h0 = np.diag(lat.box[:, 1] - lat.box[:, 0])
+    variables, args, _ = uniaxial_stress_deform(dim, h0, rate)
+    lmp = lmp_instance
+    n_first, seam_first, seam_share = 20, 0, []
+    for seed in (11, 23, 37, 41):
+        lmp.command("clear")
+        text = deck(dim, str(data)).replace(
+            "shear_frame fixed", f"shear_frame fixed strength 0.5 1.5 seed {seed}")
+        lmp.commands_string(text + variables + """
+compute         bl all lattice/bond/local id1 id2 state fb
+variable        nbroken equal c_bonds[2]+c_bonds[3]
+fix             damp all lattice/viscous 2.0e3
+thermo          1000
+run             0 post no
+""")
+        table = np.array(lmp.numpy.extract_compute("bl", 2, 2), copy=True)
+        ids = lmp.numpy.extract_atom("id")[:lat.n]
+        pos = np.empty((int(ids.max()) + 1, 3))
+        pos[ids] = lmp.numpy.extract_atom("x")[:lat.n]
+        i, j = table[:, 0].astype(int), table[:, 1].astype(int)
+        sep = pos[i] - pos[j]
+        seam = np.linalg.norm(sep, axis=1) > 1.5 * D     # the bond crosses a boundary
+        seam_share.append(float(seam.mean()))
+        for k in (0, 1):                                # minimum image: the bond's direction
+            sep[:, k] -= h0[k, k] * np.round(sep[:, k] / h0[k, k])
+        # the most stretched directions under uniaxial stress along y: +-60 degrees
+        loaded = np.abs(sep[:, 1]) > 0.5 * D
+        fb = np.where(loaded, table[:, 3], np.inf)
+        weakest = int(np.argmin(fb))
+        # to the first step in which bonds break
+        lmp.command(f"fix strain all deform 1 {args} remap x")
+        lmp.command("fix first all halt 1 v_nbroken > 0 error continue")
+        lmp.command(f"run {FAIL_STEPS} post no")
+        step = lmp.extract_global("ntimestep")
+        state = np.array(lmp.numpy.extract_compute("bl", 2, 2)[:, 2], copy=True)
+        first = np.flatnonzero(state != 0)
+        assert len(first), f"seed {seed}: nothing broke"
+        # a step raises the strain by 1/step of its value: bonds that much stronger than
+        # the weakest may break in the same step, no stronger ones
+        assert weakest in first and fb[first].max() <= fb[weakest] * (1.0 + 1.5 / step), (
+            f"seed {seed}: bonds {[(int(i[k]), int(j[k])) for k in first]} broke first "
+            f"(strengths {fb[first]}, seam {seam[first]}); the weakest loaded one is "
+            f"{i[weakest]}-{j[weakest]} ({fb[weakest]:.6g})")
+        # the next breaks, in the order of the steps in which they happen
+        lmp.command("unfix first")
+        order = list(first)
+        for _ in range(FAIL_STEPS // 10):
+            if len(order) >= n_first:
+                break
+            lmp.command("run 10 post no")
+            state = np.array(lmp.numpy.extract_compute("bl", 2, 2)[:, 2], copy=True)
+            order += [int(k) for k in np.flatnonzero(state != 0) if k not in order]
+        seam_first += int(seam[order[:n_first]].sum())
+    # the seam's share of the first breaks: binomial with the seam's share of the bonds,
+    # allowed 4 standard deviations (a seam preference would put nearly all there)
+    share, count = float(np.mean(seam_share)), 4 * n_first
+    bound = share * count + 4.0 * math.sqrt(count * share * (1.0 - share)) + 1.0
+    assert seam_first <= bound, (f"{seam_first} of the first {count} broken bonds cross the "
+                                 f"seam; its share of the bonds is {share:.3f}")
