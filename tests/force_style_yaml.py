@@ -441,7 +441,7 @@ def _write_data_file(spec: dict, rng, seed: int) -> None:
     (FOLDER / spec["data"]).write_text("\n".join(out) + "\n")
 
 
-def check_margins(cfg: ForceStyleConfig, spec: dict, result: Result | None = None) -> dict:
+def check_margins(cfg: ForceStyleConfig, spec: dict) -> dict:
     """The deck's bonds are far from their thresholds (see the module doc)."""
     data = read_data_file(FOLDER / spec["data"])
     params = pair_parameters(cfg.pair_coeff, 3)
@@ -494,7 +494,7 @@ def main() -> None:
         cfg = config_from_spec(spec)
         with tempfile.TemporaryDirectory() as tmp:
             res = run_in_process(cfg, Path(tmp))
-        counts = check_margins(cfg, spec, res)
+        counts = check_margins(cfg, spec)
         cfg.lammps_version = lammps_date(version)
         cfg.date_generated = datetime.datetime.now().strftime("%a %b %d %H:%M:%S %Y")
         cfg.natoms = len(res.init_forces)

@@ -86,7 +86,8 @@ def lattice_sites(dim: int, boundary: str, cells) -> tuple[np.ndarray, list[floa
         pts = [((2 * i + (k % 2)) * (D2 / 2.0), k * HY, 0.0)
                for k in range(ny) for i in range(nx)]
         if periodic:        # ny even: row ny is row 0 again, shifted by ny * HY
-            box = [-D2 / 4.0, nx * D2 - D2 / 4.0, -HY / 2.0, ny * HY - HY / 2.0, -0.5 * D2, 0.5 * D2]
+            box = [-D2 / 4.0, nx * D2 - D2 / 4.0, -HY / 2.0, ny * HY - HY / 2.0,
+                   -0.5 * D2, 0.5 * D2]
         else:
             box = [-2 * D2, (nx + 2) * D2, -2 * D2, ny * HY + 2 * D2, -0.5 * D2, 0.5 * D2]
     else:

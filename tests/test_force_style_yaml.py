@@ -98,9 +98,11 @@ def test_yaml_init_by_hand(config):
     coordinate (4e-19 m in the 3D periodic box, where this code subtracts the box
     length from x_i - x_j and LAMMPS adds it to the ghost's x_j), and X_n = r - d
     cancels: Kn * 4e-19 m against the largest force is ~1e-12.  Measured: 2D
-    1.2e-16 (forces), 0 (energy), 9e-16 (virial); 3D 4e-13, 2e-13, 5e-13.  Getting the force law wrong (the rest length from
-    the initial distance, a shear force at init, a missing contact, a broken bond
-    that still pulls) moves the numbers by 1e-3 or more."""
+    1.2e-16 (forces), 0 (energy), 9e-16 (virial); 3D 4e-13, 2e-13, 5e-13. Getting
+    the force law wrong (the rest length from the initial distance, a shear force at
+    init, a missing contact, a broken bond that still pulls) moves the numbers by
+    1e-3 or more.
+    """
     name, cfg = config
     spec = DECKS[name]
     counts = check_margins(cfg, spec)
