@@ -624,3 +624,64 @@ run             0 post no
     bound = share * count + 4.0 * math.sqrt(count * share * (1.0 - share)) + 1.0
     assert seam_first <= bound, (f"{seam_first} of the first {count} broken bonds cross the "
                                  f"seam; its share of the bonds is {share:.3f}")
+
+
+def test_wall_springs_see_the_steps_across_a_changing_seam(lmp_instance):
+    """fix lattice/wall keeps each particle's last position and removes periodic jumps
+    from its step.  Particles sliding along a ylo wall (velocities held by fix
+    setforce; a large mu: no sliding) cross the periodic x boundary while
+    change_box ... remap stretches x by 0.5% between runs, five times.  The wall's
+    tangential force is -Ks times the sum of the particles' springs, each the sum of
+    its steps: replayed here from the positions of every step, a step across the seam
+    unwrapped with the box length of that step (a stale length would be off by the
+    change of the length, 5e-5 m, per crossing)."""
+    lmp = lmp_instance
+    L, r, ks, n = 10.0e-3, 0.5e-3, 1.0e9, 4
+    lmp.commands_string(f"""
+units           si
+dimension       2
+boundary        p f p
+atom_style      atomic
+region          box block 0 {L} -1e-3 5e-3 -0.5e-3 0.5e-3
+create_box      1 box
+mass            1 2.295e-3
+pair_style      lattice/bond diameter {2 * r}
+pair_coeff      * * 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915 bond no
+""")
+    # unbonded particles on the wall, centres 0.1 r inside it, moving along x at
+    # speeds that take three of them across the seam (one twice) in 1000 steps
+    for x in (1.0e-3, 4.0e-3, 7.0e-3, 9.5e-3):
+        lmp.command(f"create_atoms 1 single {x} {0.9 * r} 0.0")
+    for k, v in enumerate((-30.0, -25.0, 60.0, 120.0)):
+        lmp.command(f"group p{k + 1} id {k + 1}")
+        lmp.command(f"velocity p{k + 1} set {v} 0 0")
+    lmp.commands_string(f"""
+fix             nve all nve
+fix             wall all lattice/wall ylo 0.0 1.0e10 {ks} 1.0e6
+fix             hold all setforce 0.0 0.0 0.0
+timestep        1.0e-7
+thermo_style    custom step f_wall[1]
+run             0 post no
+""")
+
+    def positions():
+        """x of the particles in the order of their IDs (atoms are re-sorted)."""
+        order = np.argsort(lmp.numpy.extract_atom("id")[:n])
+        return np.array(lmp.numpy.extract_atom("x")[:n][order, 0], copy=True)
+
+    springs = np.zeros(n)
+    last = positions()
+    crossings = 0
+    for k in range(1000):
+        if k % 200 == 100:
+            lmp.command("change_box all x scale 1.005 remap")
+        lmp.command("run 1 post no")
+        now = positions()
+        length = lmp.extract_box()[1][0] - lmp.extract_box()[0][0]
+        step = now - last
+        crossings += int(np.sum(np.abs(step) > 0.5 * length))
+        springs += step - length * np.round(step / length)
+        last = now
+    assert crossings >= 3
+    force = -lmp.extract_fix("wall", 0, 1, 0)     # the particles' force on the wall, x
+    assert force == pytest.approx(-ks * springs.sum(), rel=1e-9, abs=1e-9 * ks * L)
