@@ -48,14 +48,14 @@ def cmd_convert(args: argparse.Namespace) -> int:
 def cmd_generate(args: argparse.Namespace) -> int:
     from .conversion import rock_to_bond
     from .decks import write_deck
-    from .experiment import build_lattice, deck_spec, has_mid_height, plan_test
+    from .experiment import deck_spec, has_mid_height, plan_test, test_lattice
     from .lattice import write_data
 
     rock = _rock(args)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, args.d, args.dim)
-    lattice = build_lattice(args.dim, args.n, args.d, args.orientation)
+    lattice = test_lattice(args.dim, args.n, args.d, args.test, args.orientation)
     plan = plan_test(rock, bond, lattice, args.test, **_plan_options(args))
     model, pair = _grain_model(args)
     grain = stiffness = None
@@ -275,8 +275,11 @@ def _common(p: argparse.ArgumentParser, test: bool = True, choose_test: bool = T
     p.add_argument("--dim", type=int, choices=(2, 3), default=2)
     p.add_argument("--d", type=float, default=1.0e-3, help="particle diameter in m (default 1e-3)")
     if test and choose_test:
-        p.add_argument("--test", choices=("tension", "compression", "elastic", "confined"),
-                       default="compression")
+        p.add_argument("--test", choices=("tension", "compression", "elastic", "confined",
+                                          "periodic"),
+                       default="compression",
+                       help="periodic: uniaxial tension of a periodic cell (fix deform, lateral "
+                       "faces at zero stress): E, nu and Tu with no platens and no boundary layer")
         p.add_argument("--confining", type=float, default=0.0,
                        help="confining stress of --test confined, Pa (compression positive)")
     if test:

@@ -12,7 +12,12 @@ and loads the block along its loading axis (y in 2D, z in 3D):
   (``Xb`` and ``Fs0`` multiplied by 100, as in Liu et al. 2017), for E and nu;
 - ``confined``: compression between the platens while smooth side walls
   (``fix lattice/wall ... servo``) hold the confining stress ``confining``
-  (biaxial in 2D, triaxial in 3D).
+  (biaxial in 2D, triaxial in 3D);
+- ``periodic``: a fully periodic cell (:mod:`bonded_lattice.periodic`, no
+  platens, no free surfaces) stretched along the loading axis by ``fix deform
+  ... erate ... remap x`` at ``strain_rate`` while ``fix press/berendsen``
+  holds the lateral faces at zero stress: uniaxial tension with no boundary
+  layer; the stress is the virial pressure.
 
 A heterogeneous block (``DeckSpec.grains``, :mod:`bonded_lattice.grains`) has
 its grain ids and stiffness factors in the data file's ``Grains`` section; the
@@ -47,7 +52,7 @@ from .conversion import BondParameters
 from .grains import GrainPairOptions
 from .lattice import check_atom_style
 
-TESTS = ("tension", "compression", "elastic", "confined")
+TESTS = ("tension", "compression", "elastic", "confined", "periodic")
 SCHEDULES = ("constant", "stepwise")
 SHEAR_FRAMES = ("fixed", "corotational")    # pair_style lattice/bond shear_frame
 
@@ -83,6 +88,8 @@ class DeckSpec:
     # "atomic": the data file was written with lattice.write_data(..., atom_style="atomic")
     # (per-type mass) and the pair style gets the diameter (pair_style lattice/bond diameter d)
     atom_style: str = "sphere"
+    strain_rate: float = 0.0  # periodic: axial strain rate of fix deform (1/s)
+    modulus: float = 0.0      # periodic: the barostat's estimate of the lattice's stiffness (Pa)
 
     def __post_init__(self) -> None:
         if self.test not in TESTS:
@@ -125,6 +132,18 @@ class DeckSpec:
                              "(compression positive)")
         if self.steps < 1:
             raise ValueError(f"steps = {self.steps} is out of range: need steps >= 1")
+        if self.test == "periodic":
+            for name in ("strain_rate", "modulus"):
+                value = getattr(self, name)
+                if not (value > 0 and math.isfinite(value)):
+                    raise ValueError(f"{name} = {value} is out of range: the periodic test "
+                                     f"needs 0 < {name} < inf")
+            if self.schedule != "constant":
+                raise ValueError("the periodic test strains its box at a constant rate: "
+                                 "schedule must be 'constant'")
+            if self.energy:
+                raise ValueError("the periodic test's barostat does work that compute "
+                                 "lattice/energy does not count: no energy budget with it")
 
     @property
     def axis(self) -> str:
@@ -156,9 +175,11 @@ def _header(spec: DeckSpec) -> str:
         "compression": "Uniaxial compression between two smooth platens (fix lattice/wall, mu 0)",
         "elastic": "Elastic test: small compression with unbreakable bonds (Xb, Fs0 x 100)",
         "confined": f"Confined compression: platens plus side walls holding {spec.confining:g} Pa",
+        "periodic": "Uniaxial tension of a periodic cell: no platens, no free surfaces",
     }[spec.test]
     b = deck_bond(spec)
-    boundary = "f f p" if spec.dim == 2 else "f f f"
+    periodic = spec.test == "periodic"
+    boundary = "p p p" if periodic else ("f f p" if spec.dim == 2 else "f f f")
     pair_args = "" if spec.shear_frame == "fixed" else " shear_frame " + spec.shear_frame
     read_data = f"read_data       {spec.data_file}"
     if spec.atom_style == "atomic":    # no per-atom diameter: one for every particle
@@ -170,7 +191,7 @@ def _header(spec: DeckSpec) -> str:
             "# ghost yes: the pair style needs them for neighbours owned by other ranks\n"
             "fix             grains all property/atom i_grain d_stiffness ghost yes\n"
             + read_data + " fix grains NULL Grains")
-    return f"""# {title}
+    opening = f"""# {title}
 # Written by bonded_lattice.decks; edit freely.  Run: mpirun -np 2 lmp -in <this file>
 # Bond parameters: Kn {b.Kn:.6g} N/m, Ks {b.Ks:.6g} N/m, Xb {b.Xb:.6g} m,
 # Fs0 {b.Fs0:.6g} N, mu_p {b.mu_p:.6g}; particle diameter {spec.d:g} m.
@@ -190,7 +211,20 @@ neighbor        {0.1 * spec.d:.6g} bin
 # cutoff takes 8x the bins in 3D, about 20 bytes per particle each)
 neigh_modify    every 1 delay 0 check yes binsize {1.1 * spec.d:.6g}
 atom_modify     sort 1000 {1.1 * spec.d:.6g}
-
+"""
+    if periodic:
+        lateral = ("x",) if spec.dim == 2 else ("x", "y")
+        text = opening + f"""
+# strains from the box (the particles follow it: fix deform ... remap x)
+variable        L0 equal $(l{spec.axis})
+variable        strain equal (l{spec.axis}-v_L0)/v_L0
+"""
+        for a in lateral:
+            text += f"variable        L{a}0 equal $(l{a})\n"
+        mean = "+".join(f"(l{a}-v_L{a}0)/v_L{a}0" for a in lateral)
+        return text + (f"variable        lateral equal ({mean})/{len(lateral)}\n"
+                       "variable        gauge equal v_lateral\n")
+    return opening + f"""
 # extent of the block along the loading axis ({spec.axis})
 variable        lo0 equal $(bound(all,{spec.axis}min))
 variable        hi0 equal $(bound(all,{spec.axis}max))
@@ -260,6 +294,23 @@ def _vector(axis: str, value: str, other: str = "0") -> str:
 def _loading(spec: DeckSpec) -> str:
     ax, d = spec.axis, spec.d
     k = "xyz".index(ax) + 1  # index of the axis in fix outputs
+    if spec.test == "periodic":
+        lateral = ("x",) if spec.dim == 2 else ("x", "y")
+        pdamp = 20.0 * spec.dt
+        free = " ".join(f"{a} 0.0 0.0 {pdamp:.6g}" for a in lateral)
+        return f"""
+# ---- loading: the cell stretched along {ax} at the strain rate {spec.strain_rate:.6g} 1/s ----
+# fix deform maps the particles with the box (remap x): no platens, no end zones;
+# the lateral faces are held at zero stress by fix press/berendsen (relaxation
+# time about {pdamp:.3g} s x its modulus / the lattice's, a few dozen steps)
+fix             integrate all lattice/nve    # velocity Verlet; in 2D x and y only
+fix             damp all lattice/viscous {spec.eta:.6g}
+fix             strain all deform 1 {ax} erate {spec.strain_rate:.6g} remap x
+fix             free all press/berendsen {free} couple none modulus {spec.modulus:.6g}
+# stress (tension positive): the virial pressure of the bonds and fixes, no kinetic part
+compute         pvir all pressure NULL virial
+variable        stress equal -c_pvir[{k}]
+"""
     if spec.test == "tension":
         if spec.schedule == "constant":
             title = f"end layers moving apart at {spec.speed:g} m/s"

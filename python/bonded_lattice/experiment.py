@@ -27,6 +27,7 @@ from .conversion import (
 from .decks import DeckSpec, write_deck
 from .grains import GrainPairOptions
 from .lattice import Lattice, close_packed_block_3d, hex_block_2d, write_data
+from .periodic import paper_cell, periodic_cell
 from .plotting import broken_bond_map_png, energy_png, stress_strain_png
 from .rocks import Rock
 from .runner import RunResult, run_deck
@@ -49,6 +50,8 @@ class RunPlan:
     step_size: float = 0.0
     relax_steps: int = 0
     thermo_every: int = 1
+    strain_rate: float = 0.0     # periodic test: axial strain rate of the box (1/s)
+    modulus: float = 0.0         # periodic test: stiffness estimate for its barostat (Pa)
 
 
 def build_lattice(dim: int, n: int, d: float, orientation: float = 0.0) -> Lattice:
@@ -66,6 +69,18 @@ def build_lattice(dim: int, n: int, d: float, orientation: float = 0.0) -> Latti
     return close_packed_block_3d(n, d)
 
 
+def test_lattice(dim: int, n: int, d: float, test: str, orientation: float = 0.0) -> Lattice:
+    """The lattice of a test: the papers' block (:func:`build_lattice`), or for the
+    periodic test a periodic cell of about n particles across in the papers'
+    orientation (:func:`bonded_lattice.periodic.paper_cell`)."""
+    if test != "periodic":
+        return build_lattice(dim, n, d, orientation)
+    if orientation != 0.0:
+        raise ValueError(f"orientation = {orientation}: the periodic test's cell has the "
+                         "papers' orientation (0)")
+    return periodic_cell(dim, d, paper_cell(dim, n)).lattice
+
+
 # The papers' stepwise schedules for 1 mm particles (REFERENCE.md): displacement of
 # each platen per loading step (m) and time steps of relaxation after each; time
 # step as a fraction of sqrt(m/Kn) (2e-8 s in 2D and 1e-8 s in 3D for quartz).
@@ -77,7 +92,12 @@ PAPER_SCHEDULES = {
         "step_size": {"elastic": 1.7e-10, "tension": 1.7e-10, "compression": 1.7e-9,
                       "confined": 1.7e-9}},
 }
-RUN_MARGIN = {"elastic": 1.5, "tension": 2.5, "compression": 2.5, "confined": 2.5}
+RUN_MARGIN = {"elastic": 1.5, "tension": 2.5, "compression": 2.5, "confined": 2.5,
+              "periodic": 1.5}
+# periodic test: time steps to the failure strain.  The cell deforms homogeneously
+# (no wave has to cross it), so the rate is limited only by the lateral barostat's
+# lag and by how finely the peak is resolved (1/PERIODIC_STEPS)
+PERIODIC_STEPS = 10000
 DEFAULT_DT_FRACTION = 0.1      # of sqrt(m/Kn), the constant schedule's time step
 # thermo rows per run: the peak stress is sampled on them, so a strength run with
 # margin 2.5 resolves its peak to about 2.5/THERMO_LINES (0.17%), at a cost of a few
@@ -99,7 +119,7 @@ def target_strain(rock: Rock, test: str, confining: float = 0.0,
                   elastic_strain: float = 1.0e-4) -> float:
     """Axial strain magnitude the test must reach: failure strain or the elastic test's strain."""
     return {"tension": rock.Tu / rock.E, "compression": rock.Cu / rock.E,
-            "elastic": elastic_strain,
+            "elastic": elastic_strain, "periodic": rock.Tu / rock.E,
             "confined": confined_strength(rock, confining) / rock.E}[test]
 
 
@@ -166,6 +186,17 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
     # which matters for small blocks (a single unit rests on one or two particles)
     travel = strain * height / 2 + strain * rock.E * area / (end_particles(lattice) * 2 * bond.Kn)
     margin = RUN_MARGIN[test]
+    if test == "periodic":
+        if schedule != "constant":
+            raise ValueError("the periodic test strains its box at a constant rate: use the "
+                             "constant schedule")
+        dt = dt_scale * DEFAULT_DT_FRACTION * math.sqrt(mass / bond.Kn)
+        strain_rate = strain / (PERIODIC_STEPS * dt)
+        steps = int(math.ceil(margin * PERIODIC_STEPS))
+        return RunPlan(n=n_across, particles=lattice.n, d=d, mass=mass, dt=dt, eta=eta,
+                       speed=0.5 * strain_rate * height, steps=steps, area=area,
+                       thermo_every=max(1, steps // THERMO_LINES), strain_rate=strain_rate,
+                       modulus=2.0 * rock.E)
     if schedule == "paper":
         paper = PAPER_SCHEDULES[dim]
         dt = dt_scale * paper["dt_fraction"] * math.sqrt(mass / bond.Kn)
@@ -225,7 +256,8 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
                     area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps,
                     dt=plan.dt, thermo_every=plan.thermo_every, confining=confining,
                     schedule=plan.schedule, step_size=plan.step_size,
-                    relax_steps=plan.relax_steps, dump_every=dump_every)
+                    relax_steps=plan.relax_steps, dump_every=dump_every,
+                    strain_rate=plan.strain_rate, modulus=plan.modulus)
 
 
 def lattice_n_across(lattice: Lattice) -> int:
@@ -255,7 +287,7 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
     confining = plan_options.get("confining", 0.0)
     if bond is None:
         bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, d, dim)
-    lattice = build_lattice(dim, n, d, orientation)
+    lattice = test_lattice(dim, n, d, test, orientation)
     plan = plan_test(rock, bond, lattice, test, **plan_options)
     write_data(lattice, out / "data.lattice", plan.mass, atom_style=atom_style)
     if dump_every > 0:   # frames on thermo rows, so each frame has its stress
@@ -267,9 +299,11 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
     if result.returncode != 0:
         raise RuntimeError(f"LAMMPS failed in {out}: {result.error}")
     thermo = result.last_thermo()
-    got = measure(thermo, test, dim)
+    # the periodic test is a tension test without platens
+    kind = "tension" if test == "periodic" else test
+    got = measure(thermo, kind, dim)
 
-    strength_name = {"tension": "Tu", "compression": "Cu", "confined": "sigma1"}.get(test)
+    strength_name = {"tension": "Tu", "compression": "Cu", "confined": "sigma1"}.get(kind)
     if test == "confined":
         # the side walls restrain the lateral strain: E and nu are not measured here
         target = {"sigma1": confined_strength(rock, confining)}
@@ -291,7 +325,7 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
         from_dump = {"E": E_dump, "nu": nu_dump}
 
     title = f"{rock.name}, {dim}D, {test}, {lattice.n} particles"
-    stress_strain_png(out / "stress_strain.png", thermo["v_strain"], thermo["v_stress"], test,
+    stress_strain_png(out / "stress_strain.png", thermo["v_strain"], thermo["v_stress"], kind,
                       rock.E, target.get(strength_name) if strength_name else None, title)
     if energy:
         energy_png(out / "energy.png", thermo, title)

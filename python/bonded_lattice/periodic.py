@@ -192,7 +192,8 @@ def periodic_cell(dim: int, d: float, cell: np.ndarray) -> PeriodicCell:
     box = np.array([[0.0, d * h[0, 0]], [0.0, d * h[1, 1]], [0.0, d * h[2, 2]]])
     if dim == 2:
         box[2] = (-0.5 * d, 0.5 * d)
-    tilt = (d * h[0, 1], d * h[0, 2], d * h[1, 2])
+    # tilts of rounding size (an orthogonal cell's edges are orthogonal to 1e-16) are 0
+    tilt = tuple(0.0 if abs(t) < 1e-12 else d * t for t in (h[0, 1], h[0, 2], h[1, 2]))
     lattice = Lattice(positions, d, dim, box, tilt=None if not any(tilt) else tilt)
     # rows r (lattice frame) -> r @ rotation (the cell's frame)
     rotation = np.linalg.solve(edges, h.T)
