@@ -170,7 +170,7 @@ double FixLatticeEnergy::group_kinetic() const
       const double m = rmass ? rmass[i] : mass[type[i]];
       ke += 0.5 * m * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
     }
-  return ke;
+  return ke * force->mvv2e;    // in energy units, as compute ke
 }
 
 /* ---------------------------------------------------------------------- */
