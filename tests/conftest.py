@@ -36,15 +36,17 @@ def lmp_instance():
     lmp.close()
 
 
-def lattice_block(dim: int, box: str, block: str, types: int = 1) -> str:
+def lattice_block(dim: int, box: str, block: str, types: int = 1,
+                  scale: float | None = None) -> str:
     """Dimension, boundary, lattice, box and filled region of a block of 1 mm particles:
     hexagonal in 2D (periodic along z), fcc in 3D (free). box, block: ``xlo xhi ylo yhi``
-    (2D) or ``xlo xhi ylo yhi zlo zhi`` (3D), in lattice units."""
+    (2D) or ``xlo xhi ylo yhi zlo zhi`` (3D), in lattice units.  scale: the lattice
+    command's scale in the deck's units (default: 1 mm particles in units si)."""
     if dim == 2:
         return f"""
 dimension       2
 boundary        f f p
-lattice         hex 0.001
+lattice         hex {0.001 if scale is None else repr(scale)}
 region          box block {box} -0.5 0.5
 create_box      {types} box
 region          block block {block} -0.5 0.5
@@ -52,7 +54,7 @@ region          block block {block} -0.5 0.5
     return f"""
 dimension       3
 boundary        f f f
-lattice         fcc {1.0e-3 * 2 ** 0.5}
+lattice         fcc {1.0e-3 * 2 ** 0.5 if scale is None else repr(scale)}
 region          box block {box}
 create_box      {types} box
 region          block block {block}

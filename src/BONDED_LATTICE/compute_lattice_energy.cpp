@@ -103,6 +103,8 @@ void ComputeLatticeEnergy::stored_parts(double *parts)
     const double m = rmass ? rmass[i] : mass[type[i]];
     local[1] += 0.5 * m * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
   }
+  // mass x velocity^2 in energy units, as compute ke (1 in si, cgs, micro, nano, lj)
+  local[1] *= force->mvv2e;
   MPI_Allreduce(local, parts, 2, MPI_DOUBLE, MPI_SUM, world);
   // fixes that are already global sums: the walls' springs and gravity
   for (auto *wall : fix->wall_fixes()) parts[0] += wall->compute_scalar();

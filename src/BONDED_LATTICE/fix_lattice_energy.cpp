@@ -98,6 +98,67 @@ void FixLatticeEnergy::init()
                  "gravity), so that the accounting starts from their energies",
                  compute_id, modify->fix[i]->id, style);
   }
+  warn_uncounted();
+}
+
+/* ----------------------------------------------------------------------
+   the balance counts the pair style, fix lattice/viscous, fix lattice/wall,
+   fix gravity and the work on the work groups.  A fix that exchanges energy
+   otherwise (a thermostat, other damping, other forces, motion or box and
+   radius changes it prescribes outside the work groups) leaves its share in
+   the balance error: say so, once per fix (rank 0).  fix move on atoms that
+   are all in work groups is counted there.  (Collective: group counts.)
+------------------------------------------------------------------------- */
+
+void FixLatticeEnergy::warn_uncounted()
+{
+  // style names: "x/" or "x" matches the style x and its variants x/...
+  // (suffixes like /omp, /kk included), "x$" only x itself
+  struct Kind {
+    std::vector<std::string> styles;
+    const char *what;
+  };
+  static const Kind KINDS[] = {
+      {{"langevin", "temp/", "nvt", "npt", "nph", "gld$", "gle$", "ttm", "heat$", "ehex",
+        "press/"},
+       "it exchanges heat with a bath or work with a barostat"},
+      {{"viscous", "damping/", "nve/limit", "momentum", "recenter", "drag$"},
+       "it damps or removes motion outside fix lattice/viscous"},
+      {{"addforce", "aveforce", "setforce", "efield", "spring", "smd$", "indent$", "external$",
+        "tmd$", "wall/"},
+       "the work of the forces it adds or removes is not counted (for setforce: none only while "
+       "the atoms it holds do not move)"},
+      {{"move$", "deform", "adapt"},
+       "it moves atoms, or changes the box or the radii, outside the work groups (for fix "
+       "move: list its group after the keyword work of the compute)"}};
+  const auto matches = [](const std::string &style, const std::string &name) {
+    if (name.back() == '$') return style == name.substr(0, name.size() - 1);
+    if (name.back() == '/') return style.compare(0, name.size(), name) == 0;
+    return style == name || style.compare(0, name.size() + 1, name + "/") == 0;
+  };
+  for (auto *other : modify->get_fix_list()) {
+    const std::string style = other->style;
+    // wall/reflect turns velocities around: no energy exchanged
+    if (other == this || warned.count(other->id) || matches(style, "wall/reflect")) continue;
+    const char *what = nullptr;
+    for (const auto &kind : KINDS)
+      for (const auto &name : kind.styles)
+        if (!what && matches(style, name)) what = kind.what;
+    if (!what) continue;
+    // prescribed motion of atoms that all belong to work groups is counted as work
+    if (style == "move" && workbit) {
+      bigint outside_local = 0, outside = 0;
+      for (int i = 0; i < atom->nlocal; i++)
+        if ((atom->mask[i] & other->groupbit) && !(atom->mask[i] & workbit)) outside_local++;
+      MPI_Allreduce(&outside_local, &outside, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+      if (outside == 0) continue;
+    }
+    warned.insert(other->id);
+    if (comm->me == 0)
+      error->warning(FLERR, "compute lattice/energy {}: fix {} ({}) adds or removes energy that "
+                     "is not in the balance: {}. The balance error (element 10) includes it",
+                     compute_id, other->id, style, what);
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -170,7 +231,7 @@ double FixLatticeEnergy::group_kinetic() const
       const double m = rmass ? rmass[i] : mass[type[i]];
       ke += 0.5 * m * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
     }
-  return ke;
+  return ke * force->mvv2e;    // in energy units, as compute ke
 }
 
 /* ---------------------------------------------------------------------- */

@@ -19,6 +19,7 @@ FixStyle(LATTICE/ENERGY,FixLatticeEnergy);
 
 #include "fix_lattice_atom_history.h"
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -64,8 +65,11 @@ class FixLatticeEnergy : public FixLatticeAtomHistory {
   int start_set;
   double energy0;
 
+  std::set<std::string> warned;    // fixes already named by warn_uncounted()
+
   void raw(double *local);    // this rank's raw tallies of all sources
   double group_kinetic() const;
+  void warn_uncounted();
 };
 
 }    // namespace LAMMPS_NS

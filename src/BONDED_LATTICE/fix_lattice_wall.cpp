@@ -81,7 +81,9 @@ FixLatticeWall::FixLatticeWall(LAMMPS *lmp, int narg, char **arg) :
       if (!(area > 0.0))
         error->all(FLERR, "fix lattice/wall servo area {} is out of range: need A > 0", area);
       servo = 1;
-      servo_force = stress * area;
+      // pressure x area is a force only after LAMMPS' pressure factor (P = energy /
+      // volume x nktv2p: bar in metal, atm in real; 1 in si, cgs, micro, nano, lj)
+      servo_force = stress * area / force->nktv2p;
       iarg += 3;
     } else if (key == "gain") {
       if (iarg + 1 >= narg) error->all(FLERR, "fix lattice/wall keyword gain needs a value");

@@ -963,7 +963,10 @@ void PairLatticeBond::relayout_partners()
    (k = max(Kn, Ks): each bond's stiffness matrix has eigenvalues Kn and Ks),
    so dt_c = 2 / sqrt(max_i 2 sum_j k_ij / m_i).  It is a lower bound of the
    exact limit (0.6-0.9 of it for regular lattices, REFERENCE of
-   conversion.critical_time_step); walls and damping are not included
+   conversion.critical_time_step); walls and damping are not included.
+   In LAMMPS units a force f on a mass m accelerates it by ftm2v f / m
+   (fix nve's arithmetic), so k / m is a squared frequency only times ftm2v
+   (1 in si, cgs, micro, nano, lj; 1 / 1.0364269e-4 in metal)
 ------------------------------------------------------------------------- */
 
 void PairLatticeBond::check_time_step()
@@ -993,6 +996,7 @@ void PairLatticeBond::check_time_step()
     if (m > 0.0) lambda_local = MAX(lambda_local, 2.0 * stiffness_sum[i] / m);
   }
   MPI_Allreduce(&lambda_local, &lambda, 1, MPI_DOUBLE, MPI_MAX, world);
+  lambda *= force->ftm2v;    // omega^2 in 1/time^2 (x 1.0 in si: the same bits)
   dt_critical = (lambda > 0.0) ? 2.0 / sqrt(lambda) : 0.0;
   if (dt_critical <= 0.0) return;
   const double dt = update->dt;
