@@ -347,7 +347,7 @@ def test_atomic_scene_matches_sphere(tmp_path):
                       atom_style=style)
         info = write_scene(scene, tmp_path / style)
         res = runner.run_deck(info["deck"], tmp_path / style, progress=False)
-        assert res.returncode == 0, res.error()
+        assert res.returncode == 0, res.error
         results[style] = read_scene_dat(tmp_path / style / "scene.dat")
     a, b = results["sphere"], results["atomic"]
     assert a["tension"][-1] > 0, "bonds must break"

@@ -25,7 +25,7 @@ D = 1.0e-3
 def run(scene: Scene, tmp_path, name: str = "run"):
     info = write_scene(scene, tmp_path / name)
     res = runner.run_deck(info["deck"], tmp_path / name, progress=False)
-    assert res.returncode == 0, res.error()
+    assert res.returncode == 0, res.error
     return tmp_path / name, res
 
 

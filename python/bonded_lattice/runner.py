@@ -42,10 +42,13 @@ class RunResult:
 
     @property
     def error(self) -> str:
-        """LAMMPS' ERROR line, or the end of the output if there is none."""
-        for line in self.output.splitlines():
+        """LAMMPS' ERROR line (with the input line LAMMPS names after it, if any), or the
+        end of the output if there is none."""
+        lines = self.output.splitlines()
+        for k, line in enumerate(lines):
             if "ERROR" in line:
-                return line
+                after = lines[k + 1] if k + 1 < len(lines) else ""
+                return line + ("\n" + after if after.startswith("Last ") else "")
         return self.output[-2000:]
 
 

@@ -723,7 +723,7 @@ def run_scene(scene: Scene, out: str | Path, np_: int = 1, pictures: bool = True
     info = write_scene(scene, out)
     result = run_deck(info["deck"], out, np_=np_, progress=progress)
     if result.returncode != 0:
-        raise RuntimeError(f"the scene run failed in {out}: {result.error()}")
+        raise RuntimeError(f"the scene run failed in {out}: {result.error}")
     model = build_model(scene)
     summary = summarize(scene, out, model.lattice.positions)
     summary["wall_time_s"] = round(result.wall_time, 2)

@@ -40,6 +40,14 @@ static constexpr double DT_SAFETY_FRACTION = 0.5;
 // means the integration has become unstable
 static constexpr double STEP_LIMIT_FRACTION = 0.1;
 static constexpr double BIG = 1.0e300;
+// 2D: |z| beyond this fraction of the smallest radius is off the plane, not round-off
+static constexpr double PLANE_TOLERANCE = 1.0e-9;
+// at bonding (and for unbonded pairs at each reneighbouring) two atoms closer
+// than this fraction of r_i + r_j are at the same position: coincident atoms
+static constexpr double COINCIDENT_FRACTION = 1.0e-6;
+// the deepest overlap a bondable pair may have at bonding, relative to r_i + r_j,
+// when the bonding tolerance is smaller (tolerance 0: round-off only)
+static constexpr double OVERLAP_FLOOR = 1.0e-6;
 // branches of the force loop taken by few records (breaking, contacts, fast
 // rotation): laid out off the straight path of an intact bond
 #define RARE(cond) __builtin_expect(static_cast<bool>(cond), 0)
@@ -358,6 +366,7 @@ void PairLatticeBond::init_style()
   if (atom->natoms > 0 && maxrad <= 0.0)
     error->all(FLERR, "pair_style lattice/bond: all particles have zero diameter; set diameters "
                "(the bond rest length is r_i + r_j)");
+  if (domain->dimension == 2) check_plane();
   const double cut_auto = 2.0 * maxrad * (1.0 + tolerance);
   if (cut_user > 0.0) {
     if (cut_user < cut_auto)
@@ -546,19 +555,63 @@ double PairLatticeBond::measure_radii()
     min_radius = equal_radius = 0.5 * diameter;
     return equal_radius;
   }
-  // max radius, -(smallest positive radius), -(smallest radius)
-  double range[3] = {0.0, -BIG, -BIG}, range_all[3];
+  // max radius, -(smallest positive radius), -(smallest radius), -(lowest ID
+  // of an atom without a valid radius: zero, negative or not finite)
+  double range[4] = {0.0, -BIG, -BIG, -BIG}, range_all[4];
   for (int i = 0; i < atom->nlocal; i++) {
     const double r = atom->radius[i];
     range[0] = MAX(range[0], r);
     if (r > 0.0) range[1] = MAX(range[1], -r);
     range[2] = MAX(range[2], -r);
+    if (!(r > 0.0 && std::isfinite(r))) range[3] = MAX(range[3], -(double) atom->tag[i]);
   }
-  MPI_Allreduce(range, range_all, 3, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(range, range_all, 4, MPI_DOUBLE, MPI_MAX, world);
+  if (range_all[3] > -BIG) {
+    // the owner tells the others the radius (an error is certain)
+    const tagint bad = (tagint) -range_all[3];
+    double r = 0.0, r_all = 0.0;
+    for (int i = 0; i < atom->nlocal; i++)
+      if (atom->tag[i] == bad) r = atom->radius[i];
+    MPI_Allreduce(&r, &r_all, 1, MPI_DOUBLE, MPI_SUM, world);
+    error->all(FLERR, "pair_style lattice/bond: atom {} has diameter {}; every particle needs a "
+               "finite diameter > 0 (the rest length of a bond is r_i + r_j). Set it with set "
+               "atom {} diameter D, set type ... diameter D or in the data file's Atoms section",
+               bad, 2.0 * r_all, bad);
+  }
   min_radius = (range_all[1] > -BIG) ? -range_all[1] : 0.0;
   const bool adapt = !modify->get_fix_by_style("^adapt").empty();
   equal_radius = (range_all[0] > 0.0 && range_all[0] == -range_all[2] && !adapt) ? range_all[0] : 0.0;
   return range_all[0];
+}
+
+/* ----------------------------------------------------------------------
+   2D: every particle in the plane z = 0.  LAMMPS checks this only where atoms
+   are made (create_atoms, read_data); set ... z, fix move and others can
+   move an atom off the plane.  The neighbour search and the bonding use 3D
+   distances, so such an atom silently loses its bonds and contacts.
+   Round-off is allowed: |z| up to PLANE_TOLERANCE of the smallest radius
+   (it changes a distance by less than 1e-18 relative).  Called in init_style
+   after measure_radii(); collective
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::check_plane()
+{
+  const double zmax = PLANE_TOLERANCE * min_radius;
+  double worst = -BIG, worst_all = -BIG;    // -(lowest ID off the plane)
+  for (int i = 0; i < atom->nlocal; i++)
+    if (!(std::fabs(atom->x[i][2]) <= zmax)) worst = MAX(worst, -(double) atom->tag[i]);
+  MPI_Allreduce(&worst, &worst_all, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (worst_all <= -BIG) return;
+  const tagint bad = (tagint) -worst_all;
+  double z = 0.0, z_all = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->tag[i] == bad) z = atom->x[i][2];
+  MPI_Allreduce(&z, &z_all, 1, MPI_DOUBLE, MPI_SUM, world);
+  error->all(FLERR, "pair_style lattice/bond: atom {} is at z = {}, off the plane of this 2d "
+             "simulation: 2d particles must have z = 0 (within {:.3g}, round-off). LAMMPS checks "
+             "z only when atoms are made (create_atoms, read_data), not after set ... z, fix move "
+             "or similar commands; an atom off the plane loses its bonds and contacts. Put it back "
+             "with set atom {} z 0.0", bad, z_all, zmax, bad);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -684,10 +737,13 @@ void PairLatticeBond::create_bonds()
   if (domain->dimension == 2) fix_store->set_shear_layout(FixLatticeBondStore::SHEAR_PLANAR);
   for (int pass = 0; pass < 2; pass++) {
     for_each_owned_pair([&](int i, int j) {
-      if (!bondable[type[i]][type[j]]) return;
       const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
+      const double rsq = delx * delx + dely * dely + delz * delz;
+      const bool bond_pair = bondable[type[i]][type[j]];
+      if (pass == 0) check_overlap(i, j, rsq, bond_pair);
+      if (!bond_pair) return;
       const double reach = (radius[i] + radius[j]) * (1.0 + tolerance);
-      if (delx * delx + dely * dely + delz * delz >= reach * reach) return;
+      if (rsq >= reach * reach) return;
       if (pass == 0) {
         count[i]++;
         coordination[i]++;
@@ -739,6 +795,41 @@ void PairLatticeBond::create_bonds()
 }
 
 /* ----------------------------------------------------------------------
+   pair i-j at bonding (rsq: squared distance): coincident atoms (no bond
+   direction: NaN) are an error for any pair; a bondable pair must not
+   overlap by more than the bonding tolerance (a bond starts at rest at
+   r_i + r_j, where the lattice model's particles touch: a pair much closer
+   than that has a wrong diameter or position and would start compressed)
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::check_overlap(int i, int j, double rsq, bool bondable_pair)
+{
+  const Radii radius = radii();
+  const double touch = radius[i] + radius[j];
+  const double dist = sqrt(rsq);
+  double **x = atom->x;
+  const tagint *tag = atom->tag;
+  if (dist < COINCIDENT_FRACTION * touch)
+    error->one(FLERR, "pair_style lattice/bond: atoms {} and {} are at the same position ({} {} {}, "
+               "distance {}): coincident atoms, made twice (two create_atoms commands or regions "
+               "that overlap, a repeated line of a data file). Remove the copies, e.g. with "
+               "delete_atoms overlap {} all all", tag[i], tag[j], x[i][0], x[i][1], x[i][2], dist,
+               0.5 * touch);
+  if (!bondable_pair) return;
+  const double limit = MAX(tolerance, OVERLAP_FLOOR);
+  if (dist >= touch * (1.0 - limit)) return;
+  const double xb = params[atom->type[i]][atom->type[j]].xb;
+  error->one(FLERR, "pair_style lattice/bond: atoms {} and {} overlap at bonding: their distance "
+             "{:.6g} is {:.3g}% below r_i + r_j = {:.6g} (radii {:.6g} and {:.6g}), where bonded "
+             "particles touch; the bond would start compressed by {:.3g} (Xb = {:.3g} of the type pair). Bonds are "
+             "made between (r_i + r_j)(1 - t) and (r_i + r_j)(1 + t) = {:.6g} to {:.6g} (t = "
+             "tolerance {}). Check the diameters (a particle too large for its lattice spacing) "
+             "and the positions, or raise the pair_style keyword tolerance (< 0.4)",
+             tag[i], tag[j], dist, 100.0 * (1.0 - dist / touch), touch, radius[i], radius[j],
+             touch - dist, xb, touch * (1.0 - limit), touch * (1.0 + tolerance), tolerance);
+}
+
+/* ----------------------------------------------------------------------
    after reneighbouring: find each record's partner, drop contacts that have
    separated, collect unbonded pairs that may touch before the next rebuild
 ------------------------------------------------------------------------- */
@@ -769,37 +860,37 @@ void PairLatticeBond::refresh_partners()
     atom->map_set();
   }
 
+  // records that cannot be used as they are: judged after the loop, over all
+  // ranks, so that the message names the real cause (atoms lost from the box,
+  // a runaway atom, renumbering) rather than the first symptom found
+  RecordTrouble trouble;
   for (int i = 0; i < nlocal; i++) {
     const tagint *pt = fix_store->partners(i);
     const LatticeBondState *st = fix_store->states(i);
     int *idx = partner_idx + (bigint) i * partner_stride;
     // walk downwards so that swap-with-last removal only moves visited records
     for (int s = fix_store->nrec[i] - 1; s >= 0; s--) {
+      // records live on the lower ID: a partner ID at or below the owner's
+      // means the IDs changed after the record was made
+      if (pt[s] <= tag[i]) {
+        trouble.note(RecordTrouble::RENUMBERED, tag[i], pt[s], 0.0);
+        idx[s] = -1;
+        continue;
+      }
       int j = atom->map(pt[s]);
       if (j >= 0) j = domain->closest_image(i, j);
       // a stale map entry (deleted atom) must not pass for the partner
       if (j >= 0 && tag[j] != pt[s]) j = -1;
       bool drop = false;
       if (j < 0) {
-        if (st[s] == LB_INTACT)
-          error->one(FLERR,
-                     "pair_style lattice/bond: bond {}-{} lost its partner: atom {} is neither on "
-                     "this rank nor a ghost. Either it was deleted or renumbered after the bonds "
-                     "were made (delete_atoms, reset_atoms id), or the bond became longer than the "
-                     "communication cutoff {} (increase neighbor skin or comm_modify cutoff)",
-                     tag[i], pt[s], pt[s], cutghost);
+        if (st[s] == LB_INTACT) trouble.missing.push_back({i, pt[s]});
         drop = (st[s] == LB_CONTACT);
       } else {
         const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
         const double rsq = delx * delx + dely * dely + delz * delz;
         const double touch = radius[i] + radius[j];
-        if (st[s] == LB_INTACT && (rsq > cutghost_sq || j == i))
-          error->one(FLERR,
-                     "pair_style lattice/bond: bond {}-{} is {} long, beyond the communication "
-                     "cutoff {}. Either the intact bond stretched that far (raise neighbor skin "
-                     "or comm_modify cutoff), or atoms were renumbered or moved after the bonds "
-                     "were made (reset_atoms id, delete_atoms compress yes, set, displace_atoms)",
-                     tag[i], pt[s], sqrt(rsq), sqrt(cutghost_sq));
+        if (st[s] == LB_INTACT && rsq > cutghost_sq)
+          trouble.note(RecordTrouble::TOO_LONG, tag[i], pt[s], sqrt(rsq));
         drop = (st[s] == LB_CONTACT && rsq >= touch * touch);
       }
       if (drop) {
@@ -812,6 +903,14 @@ void PairLatticeBond::refresh_partners()
     }
     if (hetero_flag) cache_bond_factors(i);
   }
+  // one reduction per reneighbouring: the atom count (atoms lost from the box)
+  // and the troubles of every rank
+  bigint counts[4] = {nlocal, (bigint) trouble.missing.size(), trouble.count[RecordTrouble::RENUMBERED],
+                      trouble.count[RecordTrouble::TOO_LONG]};
+  bigint counts_all[4];
+  MPI_Allreduce(counts, counts_all, 4, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (counts_all[1] + counts_all[2] + counts_all[3] > 0)
+    settle_record_trouble(trouble, counts_all, cutghost);
 
   // atoms created since (fix deposit, ...) may differ in size
   measure_radii();
@@ -824,11 +923,179 @@ void PairLatticeBond::refresh_partners()
   for_each_owned_pair([&](int i, int j) {
     const double delx = x[i][0] - x[j][0], dely = x[i][1] - x[j][1], delz = x[i][2] - x[j][2];
     const double reach = radius[i] + radius[j] + skin;
-    if (delx * delx + dely * dely + delz * delz >= reach * reach) return;
+    const double rsq = delx * delx + dely * dely + delz * delz;
+    if (rsq >= reach * reach) return;
     if (has_record_with(i, tag[j])) return;
+    // two atoms on top of each other would have no contact normal
+    const double near = COINCIDENT_FRACTION * (radius[i] + radius[j]);
+    if (rsq < near * near) check_overlap(i, j, rsq, false);
     cand_i.push_back(i);
     cand_j.push_back(j);
   });
+}
+
+/* ----------------------------------------------------------------------
+   records refresh_partners() could not use, on any rank (counts_all: the
+   atoms, the intact records whose partner is not here, the renumbered and
+   the too long records, summed over the ranks).  Collective; runs only when
+   one of those counts is nonzero.  In order:
+   1. a partner ID at or below its owner's: the atoms were renumbered;
+   2. a partner that is not here and exists nowhere while atoms were lost
+      (fewer atoms than atom->natoms: LAMMPS deleted particles that left a
+      non-periodic box): the bond went with the atom, the record is dropped
+      and a warning says so; LAMMPS itself stops at the next thermo output
+      with "Lost atoms" unless thermo_modify lost ignore or warn;
+   3. stretched or missing partners during a run: an atom that moved more
+      than the instability limit in this step is the cause (report_instability);
+   4. the record's own message
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::settle_record_trouble(RecordTrouble &trouble, const bigint *counts_all,
+                                            double cutghost)
+{
+  using RT = RecordTrouble;
+  const tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+
+  if (counts_all[2] > 0)
+    error_from_any_rank(
+        trouble.count[RT::RENUMBERED] > 0,
+        fmt::format("pair_style lattice/bond: the atom IDs changed after the bonds were made: atom "
+                    "{} holds the record of its bond to atom {}, but each record is kept on the "
+                    "lower ID of its pair, by the IDs the particles had when the bond was made. "
+                    "The particles were renumbered (reset_atoms id, or delete_atoms with its "
+                    "default compress yes). Bond records name their partners by atom ID: "
+                    "renumber before the first run or minimize, which makes the bonds, or not at "
+                    "all (delete_atoms ... compress no keeps the IDs)",
+                    trouble.owner[RT::RENUMBERED], trouble.partner[RT::RENUMBERED]));
+
+  // partners that are neither local nor ghosts: do they exist on any rank?
+  const bigint natoms_before = atom->natoms;
+  const bigint natoms_now = counts_all[0];
+  bigint dropped = 0;
+  if (counts_all[1] > 0) {
+    const int nprocs = comm->nprocs;
+    const int nmine = (int) trouble.missing.size();
+    std::vector<int> nper(nprocs), offset(nprocs, 0);
+    MPI_Allgather(&nmine, 1, MPI_INT, nper.data(), 1, MPI_INT, world);
+    for (int p = 1; p < nprocs; p++) offset[p] = offset[p - 1] + nper[p - 1];
+    const int ntotal = offset[nprocs - 1] + nper[nprocs - 1];
+    std::vector<tagint> mine(nmine), wanted(ntotal);
+    for (int k = 0; k < nmine; k++) mine[k] = trouble.missing[k].second;
+    MPI_Allgatherv(mine.data(), nmine, MPI_LMP_TAGINT, wanted.data(), nper.data(), offset.data(),
+                   MPI_LMP_TAGINT, world);
+    std::vector<int> here(ntotal), exists(ntotal);
+    for (int k = 0; k < ntotal; k++) {
+      const int m = atom->map(wanted[k]);
+      here[k] = (m >= 0 && m < nlocal && tag[m] == wanted[k]) ? 1 : 0;
+    }
+    MPI_Allreduce(here.data(), exists.data(), ntotal, MPI_INT, MPI_MAX, world);
+    const bool atoms_lost = natoms_now < natoms_before;
+    for (int k = 0; k < nmine; k++) {
+      const int i = trouble.missing[k].first;
+      const tagint p = trouble.missing[k].second;
+      if (exists[offset[comm->me] + k]) {
+        trouble.note(RT::BEYOND, tag[i], p, 0.0);
+      } else if (atoms_lost) {
+        drop_record(i, p);
+        dropped++;
+      } else {
+        trouble.note(RT::GONE, tag[i], p, 0.0);
+      }
+    }
+    bigint dropped_all = 0;
+    MPI_Allreduce(&dropped, &dropped_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+    if (dropped_all > 0 && comm->me == 0)
+      error->warning(FLERR, "pair_style lattice/bond: {} particles left the non-periodic box "
+                     "and LAMMPS deleted them (Lost atoms: original {} current {}); their {} "
+                     "intact bonds are removed. LAMMPS stops at the next thermo output unless "
+                     "thermo_modify lost ignore or warn lets them go; to keep the particles, "
+                     "make the box larger than the block of particles (LAMMPS deletes atoms that "
+                     "cross a fixed boundary, boundary f) or use boundary s or m (shrink-wrapped)",
+                     natoms_before - natoms_now, natoms_before, natoms_now, dropped_all);
+  }
+
+  bigint rest[3] = {trouble.count[RT::TOO_LONG], trouble.count[RT::BEYOND],
+                    trouble.count[RT::GONE]};
+  bigint rest_all[3];
+  MPI_Allreduce(rest, rest_all, 3, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (rest_all[0] + rest_all[1] + rest_all[2] == 0) return;
+
+  // an error is certain: during a run, a particle that moved too far in this
+  // step (an unstable integration) is the cause, not the neighbour skin
+  const bool setup = update->setupflag;
+  if (!setup && update->whichflag != 2) {
+    const int runaway = fix_store->update_displacements(STEP_LIMIT_FRACTION * min_radius);
+    int any = (runaway >= 0) ? 1 : 0, any_all = 0;
+    MPI_Allreduce(&any, &any_all, 1, MPI_INT, MPI_MAX, world);
+    if (any) report_instability(runaway);
+    // the rank(s) above stop the run
+    if (any_all) MPI_Barrier(world);
+  }
+
+  std::string message;
+  const char *when = setup
+      ? "At the start of a run: atoms were moved by hand (displace_atoms, set, change_box "
+        "without remap) or renumbered (reset_atoms id, delete_atoms ... compress yes) after the "
+        "bonds were made, or the bond stretched that far in the previous run"
+      : "The intact bond stretched that far in this run (raise neighbor skin or comm_modify "
+        "cutoff)";
+  if (trouble.count[RT::GONE])
+    message = fmt::format("pair_style lattice/bond: bond {}-{} lost its partner: atom {} no longer "
+                          "exists. It was deleted (delete_atoms, fix evaporate) or the atoms were "
+                          "renumbered (reset_atoms id, delete_atoms ... compress yes) after the "
+                          "bonds were made; deleting or renumbering bonded particles is not "
+                          "supported",
+                          trouble.owner[RT::GONE], trouble.partner[RT::GONE],
+                          trouble.partner[RT::GONE]);
+  else if (trouble.count[RT::TOO_LONG])
+    message = fmt::format("pair_style lattice/bond: bond {}-{} is {} long, beyond the "
+                          "communication cutoff {}. {}",
+                          trouble.owner[RT::TOO_LONG], trouble.partner[RT::TOO_LONG],
+                          trouble.length[RT::TOO_LONG], cutghost, when);
+  else if (trouble.count[RT::BEYOND])
+    message = fmt::format("pair_style lattice/bond: bond {}-{} is beyond the communication cutoff "
+                          "{}: atom {} exists but is neither on this rank nor a ghost. {}",
+                          trouble.owner[RT::BEYOND], trouble.partner[RT::BEYOND], cutghost,
+                          trouble.partner[RT::BEYOND], when);
+  error_from_any_rank(!message.empty(), message);
+}
+
+/* ----------------------------------------------------------------------
+   remove the record of local atom i with the given partner
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::drop_record(int i, tagint partner)
+{
+  const tagint *pt = fix_store->partners(i);
+  int *idx = partner_idx + (bigint) i * partner_stride;
+  for (int s = 0; s < fix_store->nrec[i]; s++)
+    if (pt[s] == partner) {
+      const int last = fix_store->nrec[i] - 1;
+      fix_store->remove_record(i, s);
+      if (s != last) idx[s] = idx[last];
+      if (hetero_flag) cache_bond_factors(i);
+      return;
+    }
+}
+
+/* ----------------------------------------------------------------------
+   collective: if some rank has a message (mine), every rank stops with the
+   message of the lowest such rank (error->all: printed once, by rank 0);
+   returns if none has one
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::error_from_any_rank(bool mine, const std::string &message)
+{
+  const int nprocs = comm->nprocs;
+  int rank = mine ? comm->me : nprocs, first = nprocs;
+  MPI_Allreduce(&rank, &first, 1, MPI_INT, MPI_MIN, world);
+  if (first >= nprocs) return;
+  int len = (comm->me == first) ? (int) message.size() : 0;
+  MPI_Bcast(&len, 1, MPI_INT, first, world);
+  std::string text = (comm->me == first) ? message : std::string(len, ' ');
+  MPI_Bcast(&text[0], len, MPI_CHAR, first, world);
+  error->all(FLERR, text);
 }
 
 /* ----------------------------------------------------------------------

@@ -179,6 +179,29 @@ class PairLatticeBond : public Pair {
   bool has_record_with(int i, tagint partner) const;
   void create_bonds();
   void refresh_partners();
+  // records refresh_partners() could not use, judged together after its loop
+  struct RecordTrouble {
+    enum Kind { RENUMBERED, TOO_LONG, BEYOND, GONE, NKIND };
+    bigint count[NKIND] = {0, 0, 0, 0};
+    // the first record of each kind: owner and partner IDs, length (TOO_LONG)
+    tagint owner[NKIND] = {0, 0, 0, 0}, partner[NKIND] = {0, 0, 0, 0};
+    double length[NKIND] = {0.0, 0.0, 0.0, 0.0};
+    // intact records whose partner is neither local nor a ghost: (owner index, partner ID)
+    std::vector<std::pair<int, tagint>> missing;
+    void note(int kind, tagint o, tagint p, double len)
+    {
+      if (count[kind]++ == 0) {
+        owner[kind] = o;
+        partner[kind] = p;
+        length[kind] = len;
+      }
+    }
+  };
+  void settle_record_trouble(RecordTrouble &trouble, const bigint *counts_all, double cutghost);
+  void drop_record(int i, tagint partner);
+  void error_from_any_rank(bool mine, const std::string &message);
+  void check_plane();
+  void check_overlap(int i, int j, double rsq, bool bondable_pair);
   void detect_new_contacts();
   void relayout_partners();
   void planar_springs_from_vectors();
