@@ -700,3 +700,45 @@ def test_periodic_test_measures_the_conversions_rock(tmp_path, dim, rock, n):
     for name in ("E", "nu", "Tu"):
         assert abs(summary["relative_error"][name]) < 5e-3, (name, summary["relative_error"])
     assert (tmp_path / "stress_strain.png").stat().st_size > 0
+
+
+@pytest.mark.mpi
+@pytest.mark.parametrize("dim", [2, 3])
+def test_change_box_and_barostats_on_two_ranks(tmp_path, dim):
+    """change_box ... remap (a strain on every component the box can take) and the
+    three barostats on 2 MPI ranks, both shear frames: the bond sum of the box's
+    strain each time (1e-5, as on one rank)."""
+    turned, tdata = write_cell(tmp_path, dim, "turned")
+    paper, pdata = write_cell(tmp_path, dim, "paper")
+    kn, ks = BOND[dim][:2]
+    mix = strain_cases(dim)[-1][1]
+    cases = []    # (cell, frame, deck) per segment; each segment: run 0, change, run 0
+    for frame in ("fixed", "corotational"):
+        h0 = np.array([[turned.lattice.box[0, 1], turned.lattice.tilt[0], turned.lattice.tilt[1]],
+                       [0.0, turned.lattice.box[1, 1], turned.lattice.tilt[2]],
+                       [0.0, 0.0, turned.lattice.box[2, 1] - turned.lattice.box[2, 0]]])
+        lo = np.array([0.0, 0.0, turned.lattice.box[2, 0]])
+        change = change_box_command(strained_box(h0, mix), lo, dim, True)
+        cases.append((turned, frame, deck(dim, tdata, frame) + "run 0 post no\n" + change +
+                      "\nrun 0 post no\nclear\n"))
+        for barostat, command in BAROSTATS.items():
+            cell, data = (paper, pdata) if barostat == "press/berendsen" else (turned, tdata)
+            command = command.replace("PTEMP", PTEMP[dim])
+            if dim == 3:
+                command = command.replace("y 0 0 2e-8", "y 0 0 2e-8 z 0 0 2e-8")
+            if barostat != "press/berendsen":
+                command = command.replace("y 0 0 2e-8", "y 0 0 2e-8 xy 0 0 2e-8")
+            cases.append((cell, frame, deck(dim, data, frame) + "run 0 post no\n" + command +
+                          "\nrun 600 post no\nunfix baro\nrun 0 post no\nclear\n"))
+    res = run_deck("".join(text for _, _, text in cases), tmp_path, np=2)
+    assert res.returncode == 0, res.error
+    k = 0
+    for cell, frame, text in cases:
+        runs = text.count("\nrun ")
+        P0, h0 = thermo_pressure(res.thermo[k])
+        P, h = thermo_pressure(res.thermo[k + runs - 1])
+        k += runs
+        H_box = h @ np.linalg.inv(h0) - np.eye(3)
+        assert np.abs(H_box).max() > 0.1 * STRAIN
+        compare(P - P0, bond_pressure(cell, H_box, kn, ks, frame == "corotational"), dim,
+                f"{dim}D 2 ranks {frame}")
