@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from bonded_lattice.io import read_atom_dump
 
 FOLDER = Path(__file__).resolve().parent / "data" / "force-styles"
 CONFIGS = ("pair-lattice_bond_2d.yaml", "pair-lattice_bond_3d.yaml")
@@ -243,9 +244,7 @@ class Result:
 
 def read_result(out: Path) -> Result:
     def dump(name):
-        rows = (out / name).read_text().splitlines()
-        start = rows.index(next(r for r in rows if r.startswith("ITEM: ATOMS"))) + 1
-        return np.array([[float(v) for v in r.split()] for r in rows[start:]])
+        return read_atom_dump(out / name)[1]
 
     values = {}
     for stage in ("init", "run"):

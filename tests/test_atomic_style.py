@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from bonded_lattice.io import read_atom_dump
 from conftest import lattice_block, run_deck
 
 D = 1.0e-3
@@ -120,10 +121,7 @@ def test_atomic_matches_sphere_on_two_ranks(tmp_path):
     for style in ("sphere", "atomic"):
         res = run_deck(scene(style, 2, steps=300) + dump, tmp_path / style, np=2)
         assert res.returncode == 0, res.output[-2000:]
-        rows = (tmp_path / style / "final.dump").read_text().splitlines()
-        start = rows.index(next(r for r in rows if r.startswith("ITEM: ATOMS"))) + 1
-        runs[style] = (np.array([[float(v) for v in r.split()] for r in rows[start:]]),
-                       res.thermo[-1])
+        runs[style] = (read_atom_dump(tmp_path / style / "final.dump")[1], res.thermo[-1])
     (a, ta), (b, tb) = runs["sphere"], runs["atomic"]
     assert ta["c_b[2]"][-1] > 0, "bonds must break"
     assert np.max(np.abs(a[:, 1:] - b[:, 1:])) < 1e-12 * D

@@ -9,6 +9,7 @@ import re
 
 import numpy as np
 import pytest
+from bonded_lattice.io import read_atom_dump
 from conftest import QUARTZ_2D, block_2d_deck, run_deck
 
 # a third of the quartz shear strength, so that bonds also fail in shear
@@ -51,9 +52,7 @@ write_dump      all custom final.dump id x y vx vy modify sort id format float %
 
 
 def read_dump(path):
-    lines = path.read_text().splitlines()
-    start = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS")) + 1
-    return np.array([[float(v) for v in l.split()] for l in lines[start:]])
+    return read_atom_dump(path)[1]
 
 
 @pytest.fixture(scope="module")

@@ -44,6 +44,7 @@ import math
 
 import numpy as np
 import pytest
+from bonded_lattice.io import read_atom_dump
 from conftest import run_deck
 
 # quartz bond parameters (as in the examples): 2D per metre of thickness, 3D
@@ -367,9 +368,7 @@ def test_ks0_follows_bpm_spring_on_2_ranks(tmp_path, case):
         res = run_deck(deck(model, dim, boundary, STEPS, f"data.{style}") + DUMP, work, np=2,
                        files={f"data.{style}": data_file(dim, boundary, cells, style)})
         assert res.returncode == 0, res.output[-2000:]
-        rows = (work / "final.dump").read_text().splitlines()
-        start = rows.index(next(r for r in rows if r.startswith("ITEM: ATOMS"))) + 1
-        table = np.array([[float(v) for v in r.split()] for r in rows[start:]])
+        table = read_atom_dump(work / "final.dump")[1]
         header = {"pe": "PotEng", "ke": "KinEng"}     # LAMMPS' thermo column names
         thermo = {k: float(res.thermo[-1][header.get(k, k)][-1]) for k in THERMO}
         runs[model] = {"x": table[:, 1:4], "v": table[:, 4:7], "f": table[:, 7:10],

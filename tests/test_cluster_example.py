@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from bonded_lattice.io import read_atom_dump
 from bonded_lattice.runner import lmp_command, run_environment
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -47,9 +48,7 @@ def job(work: Path, steps: int, slurm_time_left: str | None = None, **extra) -> 
 
 
 def final_positions(work: Path) -> np.ndarray:
-    lines = (work / "final.dump").read_text().splitlines()
-    start = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS")) + 1
-    return np.array([[float(v) for v in l.split()] for l in lines[start:]])
+    return read_atom_dump(work / "final.dump")[1]
 
 
 @pytest.mark.mpi

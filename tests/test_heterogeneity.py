@@ -10,6 +10,7 @@ import re
 
 import numpy as np
 import pytest
+from bonded_lattice.io import read_local_dump
 from conftest import block_2d_deck, run_deck
 
 KN, KS, XB, FS0, MU = 6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915
@@ -144,10 +145,9 @@ run             4000
 """
 
 
-def read_local_dump(path) -> np.ndarray:
-    lines = path.read_text().splitlines()
-    start = next(k for k, line in enumerate(lines) if line.startswith("ITEM: ENTRIES")) + 1
-    rows = np.array([[float(v) for v in line.split()] for line in lines[start:]])
+def read_bonds(path) -> np.ndarray:
+    """The rows of a bond dump ordered by the bond's IDs (ranks write them in any order)."""
+    rows = read_local_dump(path)[1]
     return rows[np.lexsort((rows[:, 1], rows[:, 0]))]
 
 
@@ -157,7 +157,7 @@ def test_same_heterogeneous_model_and_breaking_on_one_and_two_ranks(tmp_path):
     for np_ in (1, 2):
         result = run_deck(deck, tmp_path / f"np{np_}", np=np_)
         assert result.returncode == 0, result.output[-2000:]
-        runs[np_] = (result.last_thermo(), read_local_dump(tmp_path / f"np{np_}" / "bonds.4000.txt"))
+        runs[np_] = (result.last_thermo(), read_bonds(tmp_path / f"np{np_}" / "bonds.4000.txt"))
     (t1, b1), (t2, b2) = runs[1], runs[2]
     assert t1["c_b[2]"][-1] > 0, "the test must break bonds"
     for column in ("c_b[1]", "c_b[2]", "c_b[3]"):
@@ -186,7 +186,7 @@ run             0
     assert r1.returncode == 0, r1.output[-2000:]
     r2 = run_deck(second, tmp_path, name="in.second")
     assert r2.returncode == 0, r2.output[-2000:]
-    before, after = read_local_dump(tmp_path / "before.txt"), read_local_dump(tmp_path / "after.txt")
+    before, after = read_bonds(tmp_path / "before.txt"), read_bonds(tmp_path / "after.txt")
     np.testing.assert_array_equal(before, after)
     assert len(np.unique(np.round(before[:, 3] / (KN * XB), 12))) > 100  # really heterogeneous
 

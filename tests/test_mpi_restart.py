@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from bonded_lattice.io import read_atom_dump
 from conftest import block_2d_deck, run_deck
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -22,10 +23,7 @@ D = 1.0e-3  # particle diameter (m)
 
 def read_dump(path: Path) -> np.ndarray:
     """Rows of a text dump sorted by id: id type x y z [extra...]."""
-    lines = path.read_text().splitlines()
-    start = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS")) + 1
-    data = np.array([[float(v) for v in l.split()] for l in lines[start:]])
-    return data[np.argsort(data[:, 0])]
+    return read_atom_dump(path)[1]
 
 
 def by_initial_position(work: Path, step: int) -> np.ndarray:

@@ -42,6 +42,7 @@ import math
 
 import numpy as np
 import pytest
+from bonded_lattice.io import read_atom_dump
 
 D = 1.0e-3
 DT = 1.0e-8
@@ -481,9 +482,7 @@ velocity        all set v_vx v_vy NULL
 
 
 def read_final(work) -> np.ndarray:
-    lines = (work / "final.dump").read_text().splitlines()
-    start = next(i for i, line in enumerate(lines) if line.startswith("ITEM: ATOMS")) + 1
-    return np.array([[float(v) for v in line.split()] for line in lines[start:]])
+    return read_atom_dump(work / "final.dump")[1]
 
 
 def spin(work, np_: int, frame: str, steps: int = 18000, tail: str = ""):

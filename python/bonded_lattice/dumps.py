@@ -6,61 +6,20 @@ SI units.  A least-squares affine fit of the displacements over the middle of
 the block measures the strain like a strain gauge, away from the platens' end
 zones.  The loading axis is y in 2D and z in 3D.
 
-MDAnalysis reads the files, but its ``positions`` are float32 (about 1e-9 m
-resolution on 1e-2 m coordinates, i.e. percent errors on 1e-5 strains) and are
-shifted so that the box's lower corner is the origin.  The coordinates are
-therefore taken from the float64 ``ts.data`` columns (``additional_columns``,
-MDAnalysis >= 2.8), which are sorted by id and neither shifted nor rescaled.
-MDAnalysis calls its lengths Angstrom but does not convert dump values, so
-they stay in metres.
+The trajectory is read by :func:`bonded_lattice.io.read_frames` (MDAnalysis, float64
+columns; see :mod:`bonded_lattice.io.dump`).
 """
 
 from __future__ import annotations
 
-import warnings
 from pathlib import Path
 
 import numpy as np
 
-_COLUMNS = ["id", "x", "y", "z"]
+from .io.dump import read_frames
 
-
-def read_frames(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
-    """Timesteps ``(n_frames,)`` and positions ``(n_frames, n_atoms, 3)`` in metres, sorted by id.
-
-    Raises ValueError naming the file if it is missing, empty or unreadable,
-    or if the atoms (count or ids) change between frames.
-    """
-    import MDAnalysis as mda  # slow to import: only when a dump is read
-
-    path = Path(path)
-    if not path.is_file() or path.stat().st_size == 0:
-        raise ValueError(f"{path}: LAMMPS dump is missing or empty")
-    steps, frames, id_sets = [], [], []
-    try:
-        with warnings.catch_warnings():
-            # masses and time step are guessed for the topology: irrelevant here
-            warnings.simplefilter("ignore", UserWarning)
-            u = mda.Universe(str(path), format="LAMMPSDUMP",
-                             lammps_coordinate_convention="unscaled",
-                             additional_columns=_COLUMNS)
-            for ts in u.trajectory:
-                steps.append(int(ts.data["step"]))
-                id_sets.append(ts.data["id"].astype(np.int64))
-                frames.append(np.column_stack([ts.data[c] for c in "xyz"]))
-    except (ValueError, EOFError, IndexError, KeyError, OSError) as exc:
-        raise ValueError(f"{path}: cannot read LAMMPS dump ({exc})") from exc
-    # MDAnalysis assumes a fixed number of lines per frame and silently drops
-    # a last frame that is shorter (fewer atoms, or cut off mid-write)
-    with open(path) as f:
-        n_headers = sum(line.startswith("ITEM: TIMESTEP") for line in f)
-    if n_headers != len(steps):
-        raise ValueError(f"{path}: {n_headers} frames but {len(steps)} of {u.atoms.n_atoms} "
-                         "atoms each: the number of atoms changes or a frame is incomplete")
-    for step, ids in zip(steps, id_sets):
-        if not np.array_equal(ids, id_sets[0]):
-            raise ValueError(f"{path}: the atoms at step {step} differ from those at step {steps[0]}")
-    return np.array(steps, dtype=np.int64), np.array(frames, dtype=float)
+__all__ = ["central_selection", "displacement_gradient", "loading_axis",
+           "poisson_ratio_from_dump", "read_frames", "strains_from_dump"]
 
 
 def displacement_gradient(x0: np.ndarray, x: np.ndarray,

@@ -45,6 +45,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .io.data import GRAINS_SECTION, read_grains  # noqa: F401  (read_grains: the reader)
+
 SQRT3 = math.sqrt(3.0)
 LAYER_SPACING = math.sqrt(2.0 / 3.0)  # between close-packed layers, in units of d
 ALLOWANCE = 0.2 * SQRT3               # the 2D recipe's "-0.2 lattice units" along y, in units of d
@@ -456,37 +458,3 @@ def write_data(lattice: Lattice, path: str | Path, mass: float,
         body += [f"{k + 1} {g} {s!r}"
                  for k, (g, s) in enumerate(zip(grain.tolist(), stiffness.tolist()))]
     Path(path).write_text("\n".join(lines + body) + "\n")
-
-
-GRAINS_SECTION = "Grains"   # data-file section of fix property/atom i_grain d_stiffness
-
-
-def read_grains(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The ``Grains`` section of a data file: atom ids, grain ids, stiffness factors.
-
-    Reads the section :func:`write_data` writes (header line, blank line, one
-    ``atom-ID grain stiffness`` line per atom, ending at a blank line or the
-    end of the file); raises ``ValueError`` naming the line if one is malformed
-    and if the file has no such section.
-    """
-    lines = Path(path).read_text().splitlines()
-    try:
-        start = next(k for k, line in enumerate(lines)
-                     if line.split("#", 1)[0].strip() == GRAINS_SECTION)
-    except StopIteration:
-        raise ValueError(f"{path}: no {GRAINS_SECTION} section") from None
-    ids, grains, factors = [], [], []
-    k = start + 2   # skip the blank line after the header
-    while k < len(lines) and lines[k].strip():
-        tokens = lines[k].split("#", 1)[0].split()
-        try:
-            if len(tokens) != 3:
-                raise ValueError
-            ids.append(int(tokens[0]))
-            grains.append(int(tokens[1]))
-            factors.append(float(tokens[2]))
-        except ValueError:
-            raise ValueError(f"{path}, line {k + 1}: {lines[k].strip()!r}: need "
-                             "'atom-ID grain stiffness'") from None
-        k += 1
-    return np.array(ids, dtype=np.int64), np.array(grains, dtype=np.int64), np.array(factors)

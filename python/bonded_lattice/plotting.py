@@ -6,6 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .io.dump import read_atom_dump
+
 
 def _pyplot():
     import matplotlib
@@ -44,15 +46,6 @@ def stress_strain_png(path: str | Path, strain: np.ndarray, stress: np.ndarray, 
     plt.close(fig)
 
 
-def read_dump(path: str | Path) -> tuple[list[str], np.ndarray]:
-    """Column names and rows (sorted by id) of a single-frame LAMMPS text dump."""
-    lines = Path(path).read_text().splitlines()
-    k = next(i for i, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
-    names = lines[k].split()[2:]
-    rows = np.array([[float(v) for v in line.split()] for line in lines[k + 1:]])
-    return names, rows[np.argsort(rows[:, 0])]
-
-
 def broken_bond_map_png(path: str | Path, initial_dump: str | Path, final_dump: str | Path,
                         dim: int, title: str = "") -> int:
     """Particles coloured by their broken bonds; returns the number of broken bonds.
@@ -63,8 +56,8 @@ def broken_bond_map_png(path: str | Path, initial_dump: str | Path, final_dump: 
     In 3D the particles are projected on the x-z plane.
     """
     plt = _pyplot()
-    names, first = read_dump(initial_dump)
-    _, last = read_dump(final_dump)
+    names, first = read_atom_dump(initial_dump)
+    _, last = read_atom_dump(final_dump)
     x, y = last[:, names.index("x")], last[:, names.index("y" if dim == 2 else "z")]
     if "c_ntension" in names and "c_nshear" in names:
         panels = [("broken in tension", last[:, names.index("c_ntension")]),

@@ -17,7 +17,10 @@ from pathlib import Path
 
 import numpy as np
 
-Thermo = dict[str, np.ndarray]
+from .io.thermo import Thermo, parse_thermo
+
+__all__ = ["RunResult", "Thermo", "lmp_command", "parse_thermo", "run_deck", "run_environment",
+           "run_in_process"]
 
 
 @dataclass
@@ -50,30 +53,6 @@ class RunResult:
                 after = lines[k + 1] if k + 1 < len(lines) else ""
                 return line + ("\n" + after if after.startswith("Last ") else "")
         return self.output[-2000:]
-
-
-def parse_thermo(text: str) -> list[Thermo]:
-    """Thermo tables of a LAMMPS screen or log output, one dict per run."""
-    runs: list[Thermo] = []
-    lines = text.splitlines()
-    i = 0
-    while i < len(lines):
-        if lines[i].split()[:1] == ["Step"]:
-            header = lines[i].split()
-            rows = []
-            i += 1
-            while i < len(lines) and not lines[i].startswith("Loop time"):
-                parts = lines[i].split()
-                if len(parts) == len(header):
-                    try:
-                        rows.append([float(p) for p in parts])
-                    except ValueError:
-                        pass
-                i += 1
-            table = np.array(rows, dtype=float).reshape(-1, len(header))
-            runs.append({h: table[:, k] for k, h in enumerate(header)})
-        i += 1
-    return runs
 
 
 LMP_VARIABLE = "BONDED_LATTICE_LMP"

@@ -50,6 +50,7 @@ import numpy as np
 from .conversion import BondParameters, lattice_mass, rock_to_bond
 from .grains import (GrainPairOptions, competent_layer, particle_stiffness,
                      voronoi_grains, voronoi_seeds)
+from .io.dump import read_local_dump
 from .lattice import Lattice, check_atom_style, write_data
 
 KINDS = ("layer-extension", "layer-compression", "polycrystal", "expanding")
@@ -619,13 +620,10 @@ def read_scene_dat(path: str | Path) -> dict[str, np.ndarray]:
 
 
 def read_bond_dump(path: str | Path) -> np.ndarray:
-    """Rows (id1, id2, state, x, y, z) of a ``dump local`` of the scene's bond compute."""
-    lines = Path(path).read_text().splitlines()
-    k = next(i for i, line in enumerate(lines) if line.startswith("ITEM: ENTRIES"))
-    body = [line.split() for line in lines[k + 1:] if line.strip()]
-    if not body:
-        return np.zeros((0, 6))
-    return np.array(body, dtype=float)
+    """Rows (id1, id2, state, x, y, z) of a ``dump local`` of the scene's bond compute
+    (:func:`bonded_lattice.io.read_local_dump`; no rows: an empty (0, 6) array)."""
+    rows = read_local_dump(path)[1]
+    return rows if len(rows) else np.zeros((0, 6))
 
 
 def broken_bonds(path: str | Path) -> np.ndarray:
