@@ -1,7 +1,7 @@
 """Throughput of pair_style lattice/bond against LAMMPS' BPM bonds on the same lattice.
 
 Uniaxial tension of a bonded 3D close-packed (fcc) block of equal spheres,
-quartzite parameters (REFERENCE.md), d = 1 mm, dt = 1e-8 s, viscous damping,
+quartzite parameters (docs/theory.md), d = 1 mm, dt = 1e-8 s, viscous damping,
 top and bottom layers pulled apart.  Every model runs in this one process on
 the same lattice, so the printed ratios are comparable even on a noisy machine.
 
@@ -19,7 +19,7 @@ import time
 from pathlib import Path
 
 D = 1.0e-3
-# quartz(ite) bond parameters of REFERENCE.md; 2D per metre of thickness
+# quartz(ite) bond parameters of docs/theory.md; 2D per metre of thickness
 PARAMS = {
     3: dict(kn=4.6794e7, ks=8.0679e6, xb=1.7037e-7, fs0=18.452, mup=0.39645,
             mass=2650 * math.sqrt(2) * D**3 / 2, dt=1.0e-8),

@@ -66,7 +66,7 @@ TOLERANCE = {"E": 0.001, "nu": 0.001, "Tu": 0.005, "Cu": 0.005}
 LEVELS = [0.001, 0.002, 0.005, 0.01, 0.02]
 QUANTITIES = ("E", "nu", "Tu", "Cu")
 TEST_OF = {"E": "elastic", "nu": "elastic", "Tu": "tension", "Cu": "compression"}
-PAPER_KEY = {"relax_steps": 400, "step_factor": 1.0}   # the papers' 2D schedule (REFERENCE.md)
+PAPER_KEY = {"relax_steps": 400, "step_factor": 1.0}   # the papers' 2D schedule (docs/theory.md)
 DEFAULT = {"crossings": 100.0, "damping": 1.0}        # the deck generators' current defaults
 
 
@@ -1158,7 +1158,7 @@ def write_doc(doc: Path, cmd: str, s: Settings, quick: bool, contact: dict, lat:
                           "setting is then checked at N = 30 against a slow constant-speed run.  "
                           if not quick else ""))
     add("")
-    add("**References and errors.**  E and nu: error against the formulas (REFERENCE.md).  Tu "
+    add("**References and errors.**  E and nu: error against the formulas (docs/theory.md).  Tu "
         "and Cu: error against the strength the papers' stepwise schedule measures at the same "
         "N (the multi-unit lattice is 5-15% weaker than the formulas, docs/validation.md; that "
         "deficit is the lattice's, not the loading's); the error against the formula is listed "

@@ -1,6 +1,6 @@
 """Rock properties <-> bond parameters (conversion.py) and the rock library (rocks.py).
 
-References: REFERENCE.md (worked quartz values, 5 significant digits), the papers' Table 1
+References: the worked quartz values of docs/theory.md (5 significant digits), the papers' Table 1
 (Liu, Pollard & Shi 2013; Liu et al. 2017, 4-5 digits), and identities that hold exactly in
 closed form (isotropic elasticity, the papers' bond-side formulas), where only round-off
 separates the two sides.
@@ -45,7 +45,7 @@ D = 1.0e-3
 RHO = 2650.0
 KEYS = ("Kn", "Ks", "Xb", "Fs0", "mu_p")
 
-# REFERENCE.md "Worked values" (5 significant digits: rtol 1e-4)
+# docs/theory.md "Worked values: the papers' quartz" (5 significant digits: rtol 1e-4)
 WORKED = {
     2: {"Kn": 6.5874e10, "Ks": 2.3715e10, "Xb": 1.9011e-7, "Fs0": 3.6905e4, "mu_p": 0.23915,
         "mass": 2.295e-3},
@@ -90,7 +90,7 @@ def test_papers_table_1(dim):
 
 
 def test_2017_table_1_ks_is_misprinted():
-    """The 2017 Table 1 prints Ks = 8.068e5 N/m; eq. B2 gives 8.0679e6 (REFERENCE.md)."""
+    """The 2017 Table 1 prints Ks = 8.068e5 N/m; eq. B2 gives 8.0679e6 (docs/theory.md, misprints)."""
     ks = quartz_bond(3).Ks
     assert ks == pytest.approx(8.068e6, abs=0.0005e6)
     assert ks / 8.068e5 == pytest.approx(10.0, rel=1e-4)
@@ -337,7 +337,7 @@ def test_quartz_g_and_lambda():
 def test_tensile_failure_strain_2d():
     b = quartz_bond(2)
     eps = tensile_failure_strain_2d(b.Kn, b.Ks, b.Xb, D)
-    # REFERENCE.md: single unit fails in tension at 2.71e-4 (3 digits printed)
+    # Liu 2013 paragraph 50: single unit fails in tension at 2.71e-4 (3 digits printed)
     assert eps == pytest.approx(2.71e-4, abs=0.005e-4)
     # plane strain, sigma_xx = 0: eps_yy = Tu (1 - nu^2) / E
     nu = QUARTZ["nu"]

@@ -15,7 +15,7 @@ from bonded_lattice.experiment import run_test
 from bonded_lattice.rocks import get_rock
 from conftest import run_deck
 
-# quartz 2D, d = 1 mm (REFERENCE.md)
+# quartz 2D, d = 1 mm (worked values of docs/theory.md)
 KN, KS, XB, FS0, MUP = 6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915
 MASS = 2.295e-3
 

@@ -16,7 +16,7 @@ import pytest
 from conftest import lattice_block
 
 D = 1.0e-3
-# quartz bond parameters (2D per metre of thickness, 3D; REFERENCE.md) with a
+# quartz bond parameters (2D per metre of thickness, 3D; docs/theory.md) with a
 # third of the shear strength, so that bonds fail in shear as well as in tension
 KN2, KS2, XB2, FS2, MU2 = 6.5874e10, 2.3715e10, 1.9011e-7, 1.1e4, 0.23915
 KN3, KS3, XB3, FS3, MU3 = 4.6794e7, 8.0679e6, 1.7037e-7, 5.5, 0.39645

@@ -1,7 +1,7 @@
 """Lattice generator and data files: the papers' particle counts, geometry, LAMMPS round trip.
 
 Counts: Liu, Pollard & Shi 2013 (2D, N particles across) and Liu et al. 2017 (3D, n_y elements
-along y), see REFERENCE.md "Published numerical results".
+along y), see docs/theory.md "The papers' loading schedules".
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ D = 1.0e-3
 PAPER_2D = {2: 3, 4: 18, 8: 68, 15: 247, 30: 1033, 60: 4106, 120: 16611}
 PAPER_3D = {2: 4, 4: 82, 6: 255, 8: 580, 10: 1105, 12: 2166, 16: 5461, 20: 10985, 24: 18079,
             30: 37681}
-# quartz, d = 1 mm (REFERENCE.md worked values)
+# quartz, d = 1 mm (worked values of docs/theory.md)
 COEFF_2D = "pair_coeff * * 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915"
 COEFF_3D = "pair_coeff * * 4.6794e7 8.0679e6 1.7037e-7 18.452 0.39645"
 MASS_2D, MASS_3D = 2.295e-3, 1.874e-6

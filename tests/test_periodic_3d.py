@@ -9,7 +9,7 @@ import pytest
 from conftest import run_deck
 
 D = 1.0e-3
-# quartzite in 3D (REFERENCE.md): Kn Ks Xb Fs0 mu_p, mass rho*sqrt(2)*d^3/2
+# quartzite in 3D (docs/theory.md): Kn Ks Xb Fs0 mu_p, mass rho*sqrt(2)*d^3/2
 DECK = f"""
 units           si
 dimension       3

@@ -1,6 +1,6 @@
 """Single-contact validation tests T1-T4 of Li et al. (2018), run as LAMMPS simulations.
 
-Model data (paper Table 1, REFERENCE.md "Single-contact validation tests"): 2D, no rotation,
+Model data (paper Table 1; docs/theory.md "Single-contact tests"): 2D, no rotation,
 no gravity, rho = 2500 kg/m3, r = 50 m, m = 2 sqrt3 rho r^2 = 2.1651e7 kg, Kn = Ks = 5.5e9 N/m,
 mu = 0.1, dt = 1e-3 s, eta = 0 (T1, T3) or 3.0e8 N s/m (T2, T4), runs to t = 0.4 s.
 k = sqrt(Kn/m) = 15.938 1/s, n = eta/(2m) = 6.928 1/s, w = sqrt(k^2 - n^2).
@@ -72,7 +72,7 @@ MU = 0.1
 ETA = 3.0e8
 DT = 1.0e-3
 T_END = 0.4
-V0_NORMAL = -0.1    # T1/T2 initial velocity (REFERENCE.md: the paper's eq. 27 misprints -0.0100)
+V0_NORMAL = -0.1    # T1/T2 initial velocity (the paper's eq. 27 misprints -0.0100; docs/theory.md)
 V0_SHEAR = 1.0      # T3/T4 initial velocity along the wall
 
 
@@ -266,11 +266,11 @@ def zero_crossing(t, y):
 
 
 # ----------------------------------------------------------------------------------------------
-# the paper's numbers (REFERENCE.md) reproduced by the analytic solutions used below
+# the paper's numbers (docs/theory.md) reproduced by the analytic solutions used below
 # ----------------------------------------------------------------------------------------------
 
 def test_reference_numbers():
-    """Guard the analytic solutions themselves against REFERENCE.md's printed values."""
+    """Guard the analytic solutions themselves against the values of docs/theory.md."""
     k, n, w = k_n_w(MASS, ETA)
     assert MASS == pytest.approx(2.1651e7, abs=0.00005e7)
     assert k == pytest.approx(15.938, abs=0.0005)
@@ -288,7 +288,7 @@ def test_reference_numbers():
     # v_s1 = v0 cos(k t_s1) = sqrt(v0^2 - (k y1)^2) = 0.93617 m/s; the paper's eq. 36 prints
     # 0.9367, which its own t_s1 = 0.02254 s does not give (its C1 and t_s4 agree with 0.93617)
     assert ev3["v_a"] == pytest.approx(0.93617, abs=0.000005)
-    # the paper's eq. 37 prints 5.6033 m/s^2 (REFERENCE.md rounds it to 5.604; it is 5.603)
+    # the paper's eq. 37 prints 5.6033 m/s^2, which is right (5.604 would be a wrong rounding)
     assert ev3["c"] == pytest.approx(5.6033, abs=0.00005)
     assert ev3["t_b"] == pytest.approx(0.1896, abs=0.00005)
     assert ev3["y_b"] == pytest.approx(0.1003, abs=0.00005)

@@ -29,7 +29,7 @@ setforce reports (its vector = the group's force before it is zeroed); the apex 
 the load axis is zero, so the viscous force does not enter it.
 
 Bond parameters are computed here from quartz (E 90 GPa, nu 0.16, Tu 25 MPa, Cu 252 MPa,
-mu_i 1, d 1 mm) with the Appendix-B formulas (REFERENCE.md), checked against the worked values.
+mu_i 1, d 1 mm) with the Appendix-B formulas (docs/theory.md), checked against the worked values.
 The closed-form unit strengths are then the inputs Tu and Cu themselves.
 
 Tolerances
@@ -85,7 +85,7 @@ QUARTZ = {"E": 90.0e9, "nu": 0.16, "Tu": 25.0e6, "Cu": 252.0e6, "mu_i": 1.0}
 D = 1.0e-3
 RHO = 2650.0
 
-# REFERENCE.md "Worked values" (5 significant figures; 3D Ks is 8.0679e6, the 2017 paper's Table 1
+# docs/theory.md "Worked values" (5 significant figures; 3D Ks is 8.0679e6, the 2017 paper's Table 1
 # misprints 8.068e5)
 WORKED = {
     2: {"Kn": 6.5874e10, "Ks": 2.3715e10, "Xb": 1.9011e-7, "Fs0": 3.6905e4, "mu_p": 0.23915,
@@ -96,13 +96,14 @@ WORKED = {
 
 
 # ----------------------------------------------------------------------------------------------
-# rock properties <-> bond parameters (REFERENCE.md; Liu 2013 App. B/C, Liu 2017 App. B, eqs. 4-15)
+# rock properties <-> bond parameters (docs/theory.md; Liu 2013 App. B/C, Liu 2017 App. B, eqs. 4-15)
 # ----------------------------------------------------------------------------------------------
 
 def bond_params(dim: int, E: float, nu: float, Tu: float, Cu: float, mu_i: float,
                 d: float) -> dict[str, float]:
     """Kn, Ks, Xb, Fs0, mu_p of the 2D hexagonal or 3D close-packed lattice (package formulas,
-    checked against REFERENCE.md's worked values in test_quartz_worked_values)."""
+    checked against the worked values of docs/theory.md in test_conversion_worked_values and in
+    test_workflow.py's test_quartz_worked_values)."""
     return asdict(rock_to_bond(E, nu, Tu, Cu, mu_i, d, dim))
 
 
@@ -381,7 +382,7 @@ run 0
 
 @pytest.mark.parametrize("dim", [2, 3])
 def test_conversion_worked_values(dim):
-    """App. B conversion reproduces REFERENCE.md's worked values; App. C inverts it."""
+    """App. B conversion reproduces the worked values of docs/theory.md; App. C inverts it."""
     p = bond_params(dim, d=D, **QUARTZ)
     for key in ("Kn", "Ks", "Xb", "Fs0", "mu_p"):
         assert p[key] == pytest.approx(WORKED[dim][key], rel=1e-4), key
@@ -389,7 +390,7 @@ def test_conversion_worked_values(dim):
     back = unit_theory(dim, p, D)
     for key in ("E", "nu", "Tu", "Cu", "mu_i"):
         assert back[key] == pytest.approx(QUARTZ[key], rel=1e-12), key
-    # REFERENCE.md: C_open / Tu = 0.75/nu - 1 in 2D
+    # Liu 2013 eq. 23: C_open / Tu = 0.75/nu - 1 in 2D
     if dim == 2:
         assert back["C_open"] / back["Tu"] == pytest.approx(0.75 / QUARTZ["nu"] - 1.0, rel=1e-12)
 

@@ -13,7 +13,7 @@ from bonded_lattice.decks import DeckSpec, deck_text
 from bonded_lattice.experiment import run_test
 from bonded_lattice.rocks import get_rock
 
-# REFERENCE.md worked values (quartz, d = 1 mm); the 2017 paper misprints Ks
+# worked values of docs/theory.md (quartz, d = 1 mm); the 2017 paper misprints Ks
 WORKED = {
     2: (6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915),
     3: (4.6794e7, 8.0679e6, 1.7037e-7, 18.452, 0.39645),

@@ -67,7 +67,7 @@ def crack_onset(stress: np.ndarray, broken_tension: np.ndarray, intact0: float,
 
 # Elastic windows as fractions of the peak |stress|.  In compression the
 # lattice's bonds across the load open at C_open, about a third of Cu
-# (REFERENCE.md: C_open/Tu = 0.75/nu - 1), so strength tests fit below a
+# (Liu 2013 eq. 23: C_open/Tu = 0.75/nu - 1; docs/theory.md), so strength tests fit below a
 # quarter of the peak; the elastic test never breaks and uses its whole curve.
 STRENGTH_WINDOW = (0.1, 0.25)
 ELASTIC_WINDOW = (0.2, 1.0)

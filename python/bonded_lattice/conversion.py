@@ -1,6 +1,6 @@
 """Rock properties <-> bond parameters of the bonded close-packed lattice (closed form).
 
-Sources (formulas as checked in REFERENCE.md):
+Sources (the formulas are derived and checked in docs/theory.md):
 
 - 2D hexagonal lattice: Liu, Pollard & Shi (2013), J. Geophys. Res. 118, 71-82,
   Appendix B (rock -> bond, eqs. B1-B5) and Appendix C (bond -> rock, eqs. C1-C5).

@@ -81,7 +81,8 @@ def test_lattice(dim: int, n: int, d: float, test: str, orientation: float = 0.0
     return periodic_cell(dim, d, paper_cell(dim, n)).lattice
 
 
-# The papers' stepwise schedules for 1 mm particles (REFERENCE.md): displacement of
+# The papers' stepwise schedules for 1 mm particles (Liu 2013 sections 5.2-5.3, Liu 2017
+# section 5.1; docs/theory.md, "The papers' loading schedules"): displacement of
 # each platen per loading step (m) and time steps of relaxation after each; time
 # step as a fraction of sqrt(m/Kn) (2e-8 s in 2D and 1e-8 s in 3D for quartz).
 PAPER_SCHEDULES = {

@@ -44,7 +44,7 @@ ENVELOPE = {"dim": 2, "n": 15, "pressures": [0.0, 10e6, 20e6]}
 ENERGY_SIZE = 12            # the 2017 paper's energy example: 2166 elements, 12 along y
 CALIBRATION_SIZE = {2: 15, 3: 6}
 
-# what the papers report (REFERENCE.md): relative errors
+# what the papers report (docs/theory.md, "The papers' numerical results"): relative errors
 PAPER = {
     2: {"unit": {"Tu": -0.0003, "Cu": -0.0098}, "multi": {"Tu": -0.043, "Cu": -0.222},
         "unit_E_1e-3": -0.00034, "unit_nu_1e-3": 0.00084},

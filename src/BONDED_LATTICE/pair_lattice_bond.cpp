@@ -1229,8 +1229,9 @@ void PairLatticeBond::relayout_partners()
    theorem omega_max^2 <= max_i 2 sum_j k_ij / m_i over the particle's records
    (k = max(Kn, Ks): each bond's stiffness matrix has eigenvalues Kn and Ks),
    so dt_c = 2 / sqrt(max_i 2 sum_j k_ij / m_i).  It is a lower bound of the
-   exact limit (0.6-0.9 of it for regular lattices, REFERENCE of
-   conversion.critical_time_step); walls and damping are not included.
+   exact limit (0.6-0.9 of it for regular lattices: docs/theory.md,
+   "Critical time step"; conversion.critical_time_step); walls and damping
+   are not included.
    In LAMMPS units a force f on a mass m accelerates it by ftm2v f / m
    (fix nve's arithmetic), so k / m is a squared frequency only times ftm2v
    (1 in si, cgs, micro, nano, lj; 1 / 1.0364269e-4 in metal)
@@ -1650,7 +1651,7 @@ static inline bool breaks_in_shear(double fs0, double mu_p, double fn, double fs
 }
 
 /* ----------------------------------------------------------------------
-   the force loop over records (REFERENCE.md, "Model"), compiled per feature
+   the force loop over records (docs/theory.md, "The model"), compiled per feature
    set F (see scene_features):
    LB_EV: tally energy/virial; LB_TALLY: accumulate breaking and frictional
    heat (compute lattice/energy); LB_PLANAR: 2D, no z components;
