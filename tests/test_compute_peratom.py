@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 from bonded_lattice.experiment import run_test
-from bonded_lattice.plotting import read_dump
+from bonded_lattice.io import read_atom_dump
 from bonded_lattice.rocks import get_rock
 from conftest import run_deck
 
@@ -14,14 +14,14 @@ def test_per_atom_broken_counts_add_up_to_the_global_counts(tmp_path):
     # a 2D compression test to failure on 2 ranks: each broken bond counts at both
     # ends, also when the partner is a ghost (reverse communication)
     s = run_test(get_rock("quartz"), 2, "compression", 8, tmp_path, np_=2, progress=False)
-    names, rows = read_dump(tmp_path / "dump.final")
+    names, rows = read_atom_dump(tmp_path / "dump.final")
     tension = rows[:, names.index("c_ntension")].sum()
     shear = rows[:, names.index("c_nshear")].sum()
     assert s["broken_bonds"]["tension"] > 0 and s["broken_bonds"]["shear"] > 0
     assert tension == 2 * s["broken_bonds"]["tension"]
     assert shear == 2 * s["broken_bonds"]["shear"]
     # every bond is intact, broken in tension or broken in shear
-    _, first = read_dump(tmp_path / "dump.initial")
+    _, first = read_atom_dump(tmp_path / "dump.initial")
     intact0 = first[:, names.index("c_nbonds")].sum()
     intact = rows[:, names.index("c_nbonds")].sum()
     assert intact + tension + shear == intact0
