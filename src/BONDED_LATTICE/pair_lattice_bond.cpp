@@ -491,8 +491,9 @@ PairLatticeBond::BondParams PairLatticeBond::bond_params(int i, int j) const
    positions and springs (as the last force evaluation left them): the larger
    of the tensile ratio Fn / (Kn Xb) = Xn / Xb and the shear ratio
    (Fs + mu_p Fn) / Fs0 (the Coulomb limit Fs <= Fs0 - mu_p Fn as a ratio;
-   tensile_ratio and shear_ratio in lattice_bond_physics.h).  A bond breaks when it exceeds 1.  mode: LB_BROKEN_TENSION or
-   LB_BROKEN_SHEAR, the larger one; 0 and LB_INTACT for other records
+   tensile_ratio and shear_ratio in lattice_bond_physics.h).  A bond breaks
+   when it exceeds 1.  mode: LB_BROKEN_TENSION or LB_BROKEN_SHEAR, the larger
+   one; 0 and LB_INTACT for other records
 ------------------------------------------------------------------------- */
 
 PairLatticeBond::BondLoad PairLatticeBond::bond_load(int i, int s, int &mode) const
