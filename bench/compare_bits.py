@@ -11,8 +11,9 @@ shear, fragments collide: new frictional contacts), two type pairs with their
 own parameters, a fixed floor and a moving lid (``fix lattice/wall`` with
 friction), the energy budget (heat tallies) and thermo output every 25 steps
 (the general loop on those steps, the specialised loops in between); the same
-with heterogeneous strengths (``strength 0.5 1.5 seed 7``) and with the
-corotational shear frame.
+with heterogeneous strengths (``strength 0.5 1.5 seed 7``), with the
+corotational shear frame, and with a type pair without shear spring and one
+without contact friction.
 
     python bench/compare_bits.py BEFORE_TREE AFTER_TREE [--steps 1000] [--out DIR]
 
@@ -59,6 +60,16 @@ create_atoms    1 region block
 set             type 1 mass 3.747e-6
 """,
 }
+# one type pair without shear spring (Ks = 0: breaks in shear only when its
+# Coulomb limit turns negative) and one without contact friction (mu_p = 0)
+MIXED = {
+    2: ["1 1 6.5874e10 2.3715e10 1.9011e-7 1.1e4 0.23915",
+        "1 2 3.2937e10 0.0 1.9011e-7 1.1e4 0.23915",
+        "2 2 1.31748e11 2.3715e10 1.33077e-7 1.1e4 0.0"],
+    3: ["1 1 4.6794e7 8.0679e6 1.7037e-7 5.5 0.39645",
+        "1 2 2.3397e7 0.0 1.7037e-7 5.5 0.39645",
+        "2 2 9.3588e7 8.0679e6 1.19259e-7 5.5 0.0"],
+}
 WALLS = {    # Kn Ks mu of the platens: twice the bonds' stiffnesses, friction 0.3
     2: "1.3e11 4.7e10 0.3",
     3: "9.4e7 1.6e7 0.3",
@@ -67,11 +78,13 @@ STYLE_ARGS = {
     "plain": "",
     "hetero": "strength 0.5 1.5 seed 7",
     "corotational": "shear_frame corotational",
+    "mixed": "",
 }
 
 
 def deck(dim: int, variant: str, steps: int) -> str:
-    pair = "\n".join(f"pair_coeff      {c}" for c in COEFFS[dim])
+    coeffs = MIXED[dim] if variant == "mixed" else COEFFS[dim]
+    pair = "\n".join(f"pair_coeff      {c}" for c in coeffs)
     vz = "v_vz" if dim == 3 else "NULL"
     return f"""units           si
 atom_style      sphere

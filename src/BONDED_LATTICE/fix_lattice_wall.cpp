@@ -278,8 +278,12 @@ void FixLatticeWall::apply_forces(bool step_taken)
       const double s2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
       // Coulomb sliding, Ks |S| <= mu Fn: the pair's limit -mu Fn with its Fn = -fn
       // (negating both factors gives the same bits)
-      if (slide(ks, friction_limit(mu, -fn), s2, shear_force_squared(ks, s2), s) && tally)
-        wall_slide_heat(ks, s1, inc, s, q);
+      const double limit = friction_limit(mu, -fn);
+      if (slides(shear_force_squared(ks, s2), limit)) {
+        const double scale = slide_scale(ks, limit, s2);
+        for (int k = 0; k < 3; k++) s[k] *= scale;
+        if (tally) wall_slide_heat(ks, s1, inc, s, q);
+      }
       for (int k = 0; k < 3; k++) fs[k] = -ks * s[k];
       es = spring_energy(ks, s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
     }

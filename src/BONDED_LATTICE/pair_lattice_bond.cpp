@@ -1832,10 +1832,15 @@ template <int F> void PairLatticeBond::eval()
               continue;
             }
             if (FRICTION) {
-              if (slide_planar(p.ks, friction_limit(p.mu_p, fn), fs2, sig) && TALLY) {
-                const double q = planar_heat(p.ks, s1, dtan, sig);
-                if (broke_now) q_break_s += q;
-                else q_friction += q;
+              const double limit = friction_limit(p.mu_p, fn);    // sliding friction of a contact
+              if (slides(fs2, limit)) {
+                const double slid = planar_slid(p.ks, limit, sig);
+                if (TALLY) {
+                  const double q = planar_heat(p.ks, s1, dtan, slid);
+                  if (broke_now) q_break_s += q;
+                  else q_friction += q;
+                }
+                sig = slid;
               }
             } else {
               // broke in shear just now: a frictionless contact keeps no spring
@@ -1844,54 +1849,64 @@ template <int F> void PairLatticeBond::eval()
             }
           }
           sh[0] = sig;
-          planar_shear_force(p.ks, sig, nx, ny, fsx, fsy);
+          // force on the owner -Ks sig t
+          fsx = p.ks * sig * ny;
+          fsy = -p.ks * sig * nx;
           if (EVFLAG) es = planar_spring_energy(p.ks, sig);
         } else if (!PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
-          double s0[3] = {sh[0], sh[1], sh[2]};
+          double s0x = sh[0], s0y = sh[1], s0z = sh[2];
           // shear_frame corotational: the spring turned with the pair's rotation
-          if (COROTATE) rotate_spring(w[i], w[j], s0[0], s0[1], s0[2]);
+          if (COROTATE) rotate_spring(w[i], w[j], s0x, s0y, s0z);
           // turned into the new tangent plane, plus the tangential increment
-          const double n[3] = {nx, ny, nz}, u[3] = {ux, uy, uz};
-          SpringStep spring;
-          spring_step(n, s0, u, spring);
-          double *const snew = spring.s;
-          const double fs2 = shear_force_squared(p.ks, spring.s2);
+          const SpringStep step = spring_step(nx, ny, nz, s0x, s0y, s0z, ux, uy, uz);
+          double sx = step.sx, sy = step.sy, sz = step.sz;
+          const double fs2 = shear_force_squared(p.ks, step.s2);
           const bool broke_now =
               state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break);
           if (broke_now) state = st[s] = LB_BROKEN_SHEAR;
           if (RARE(state != LB_INTACT)) {
+            // the two parts of the step (for the heat): the turned old spring and the increment
+            const double s1[3] = {step.s1x, step.s1y, step.s1z}, t[3] = {step.tx, step.ty, step.tz};
             if (contact_open(xn)) {
               // broken in shear while in tension: the contact is open
               if (TALLY) {
                 const double none[3] = {0.0, 0.0, 0.0};
                 q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
-                q_break_s += shear_heat(p.ks, spring.s1, spring.t, none);
+                q_break_s += shear_heat(p.ks, s1, t, none);
               }
               clear_spring<NC>(sh);
               continue;
             }
             if (FRICTION) {
-              if (slide(p.ks, friction_limit(p.mu_p, fn), spring.s2, fs2, snew) && TALLY) {
-                const double q = shear_heat(p.ks, spring.s1, spring.t, snew);
-                if (broke_now) q_break_s += q;
-                else q_friction += q;
+              const double limit = friction_limit(p.mu_p, fn);    // sliding friction of a contact
+              if (slides(fs2, limit)) {
+                const double scale = slide_scale(p.ks, limit, step.s2);
+                sx *= scale;
+                sy *= scale;
+                sz *= scale;
+                if (TALLY) {
+                  const double s2[3] = {sx, sy, sz};
+                  const double q = shear_heat(p.ks, s1, t, s2);
+                  if (broke_now) q_break_s += q;
+                  else q_friction += q;
+                }
               }
             } else {
               // broke in shear just now: a frictionless contact keeps no spring
               if (TALLY) {
                 const double none[3] = {0.0, 0.0, 0.0};
-                q_break_s += shear_heat(p.ks, spring.s1, spring.t, none);
+                q_break_s += shear_heat(p.ks, s1, t, none);
               }
-              snew[0] = snew[1] = snew[2] = 0.0;
+              sx = sy = sz = 0.0;
             }
           }
-          sh[0] = snew[0];
-          sh[1] = snew[1];
-          sh[2] = snew[2];
-          fsx = -p.ks * snew[0];
-          fsy = -p.ks * snew[1];
-          fsz = -p.ks * snew[2];
-          if (EVFLAG) es = spring_energy(p.ks, snew[0] * snew[0] + snew[1] * snew[1] + snew[2] * snew[2]);
+          sh[0] = sx;
+          sh[1] = sy;
+          sh[2] = sz;
+          fsx = -p.ks * sx;
+          fsy = -p.ks * sy;
+          fsz = -p.ks * sz;
+          if (EVFLAG) es = spring_energy(p.ks, sx * sx + sy * sy + sz * sz);
         } else if (has_shear) {
           clear_spring<NC>(sh);    // a frictionless closed contact
         }
