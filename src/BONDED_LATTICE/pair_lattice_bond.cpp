@@ -1854,59 +1854,62 @@ template <int F> void PairLatticeBond::eval()
           fsy = -p.ks * sig * nx;
           if (EVFLAG) es = planar_spring_energy(p.ks, sig);
         } else if (!PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
-          double s0x = sh[0], s0y = sh[1], s0z = sh[2];
-          // shear_frame corotational: the spring turned with the pair's rotation
-          if (COROTATE) rotate_spring(w[i], w[j], s0x, s0y, s0z);
-          // turned into the new tangent plane, plus the tangential increment
-          const SpringStep step = spring_step(nx, ny, nz, s0x, s0y, s0z, ux, uy, uz);
-          double sx = step.sx, sy = step.sy, sz = step.sz;
-          const double fs2 = shear_force_squared(p.ks, step.s2);
-          const bool broke_now =
-              state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break);
-          if (broke_now) state = st[s] = LB_BROKEN_SHEAR;
-          if (RARE(state != LB_INTACT)) {
-            // the two parts of the step (for the heat): the turned old spring and the increment
-            const double s1[3] = {step.s1x, step.s1y, step.s1z}, t[3] = {step.tx, step.ty, step.tz};
-            if (contact_open(xn)) {
-              // broken in shear while in tension: the contact is open
-              if (TALLY) {
-                const double none[3] = {0.0, 0.0, 0.0};
-                q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
-                q_break_s += shear_heat(p.ks, s1, t, none);
-              }
-              clear_spring<NC>(sh);
-              continue;
-            }
-            if (FRICTION) {
-              const double limit = friction_limit(p.mu_p, fn);    // sliding friction of a contact
-              if (slides(fs2, limit)) {
-                const double scale = slide_scale(p.ks, limit, step.s2);
-                sx *= scale;
-                sy *= scale;
-                sz *= scale;
+          // compiled only into the 3D loops: the 2D loops' code does not depend on it
+          if constexpr (!PLANAR) {
+            double s0x = sh[0], s0y = sh[1], s0z = sh[2];
+            // shear_frame corotational: the spring turned with the pair's rotation
+            if (COROTATE) rotate_spring(w[i], w[j], s0x, s0y, s0z);
+            // turned into the new tangent plane, plus the tangential increment
+            const SpringStep step = spring_step(nx, ny, nz, s0x, s0y, s0z, ux, uy, uz);
+            double sx = step.sx, sy = step.sy, sz = step.sz;
+            const double fs2 = shear_force_squared(p.ks, step.s2);
+            const bool broke_now =
+                state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break);
+            if (broke_now) state = st[s] = LB_BROKEN_SHEAR;
+            if (RARE(state != LB_INTACT)) {
+              // the two parts of the step (for the heat): the turned old spring and the increment
+              const double s1[3] = {step.s1x, step.s1y, step.s1z}, t[3] = {step.tx, step.ty, step.tz};
+              if (contact_open(xn)) {
+                // broken in shear while in tension: the contact is open
                 if (TALLY) {
-                  const double s2[3] = {sx, sy, sz};
-                  const double q = shear_heat(p.ks, s1, t, s2);
-                  if (broke_now) q_break_s += q;
-                  else q_friction += q;
+                  const double none[3] = {0.0, 0.0, 0.0};
+                  q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
+                  q_break_s += shear_heat(p.ks, s1, t, none);
                 }
+                clear_spring<NC>(sh);
+                continue;
               }
-            } else {
-              // broke in shear just now: a frictionless contact keeps no spring
-              if (TALLY) {
-                const double none[3] = {0.0, 0.0, 0.0};
-                q_break_s += shear_heat(p.ks, s1, t, none);
+              if (FRICTION) {
+                const double limit = friction_limit(p.mu_p, fn);    // sliding friction of a contact
+                if (slides(fs2, limit)) {
+                  const double scale = slide_scale(p.ks, limit, step.s2);
+                  sx *= scale;
+                  sy *= scale;
+                  sz *= scale;
+                  if (TALLY) {
+                    const double s2[3] = {sx, sy, sz};
+                    const double q = shear_heat(p.ks, s1, t, s2);
+                    if (broke_now) q_break_s += q;
+                    else q_friction += q;
+                  }
+                }
+              } else {
+                // broke in shear just now: a frictionless contact keeps no spring
+                if (TALLY) {
+                  const double none[3] = {0.0, 0.0, 0.0};
+                  q_break_s += shear_heat(p.ks, s1, t, none);
+                }
+                sx = sy = sz = 0.0;
               }
-              sx = sy = sz = 0.0;
             }
+            sh[0] = sx;
+            sh[1] = sy;
+            sh[2] = sz;
+            fsx = -p.ks * sx;
+            fsy = -p.ks * sy;
+            fsz = -p.ks * sz;
+            if (EVFLAG) es = spring_energy(p.ks, sx * sx + sy * sy + sz * sz);
           }
-          sh[0] = sx;
-          sh[1] = sy;
-          sh[2] = sz;
-          fsx = -p.ks * sx;
-          fsy = -p.ks * sy;
-          fsz = -p.ks * sz;
-          if (EVFLAG) es = spring_energy(p.ks, sx * sx + sy * sy + sz * sz);
         } else if (has_shear) {
           clear_spring<NC>(sh);    // a frictionless closed contact
         }
