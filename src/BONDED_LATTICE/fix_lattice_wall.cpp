@@ -18,6 +18,7 @@
 #include "error.h"
 #include "force.h"
 #include "input.h"
+#include "lattice_bond_physics.h"
 #include "pair_lattice_bond.h"
 #include "update.h"
 #include "variable.h"
@@ -27,6 +28,7 @@
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
+using namespace LatticeBondPhysics;
 
 /* ---------------------------------------------------------------------- */
 
@@ -223,6 +225,10 @@ void FixLatticeWall::post_force(int /*vflag*/)
    trapezoidal in this rank's old and new normal force (a sum over atoms, so
    atoms changing rank do not matter), and the heat of the shear springs as
    in pair lattice/bond: Ks/2 [(s1 + s2).ds - |s2|^2 + |s1|^2].
+   The contact's physics is pair lattice/bond's (lattice_bond_physics.h):
+   the Coulomb cap, the heat and the energy; the spring's tangent plane is
+   the wall's and does not turn, so the spring's update (spring_step) is the
+   tangential increment added to it.
 ------------------------------------------------------------------------- */
 
 void FixLatticeWall::apply_forces(bool step_taken)
@@ -257,12 +263,12 @@ void FixLatticeWall::apply_forces(bool step_taken)
     const double delta = (radius ? radius[i] : uniform_radius) - h;
     if (delta <= 0.0) {
       if (tally && ks > 0.0)   // a spring left behind by a lost contact lets go
-        q += 0.5 * ks * (s[0] * (s[0] + inc[0]) + s[1] * (s[1] + inc[1]) + s[2] * (s[2] + inc[2]));
+        q += wall_release(ks, s, inc);
       s[0] = s[1] = s[2] = 0.0;
       continue;
     }
 
-    const double fn = kn * delta;
+    const double fn = normal_force(kn, delta);    // compression positive: -Fn of the pair
     double fs[3] = {0.0, 0.0, 0.0};
     double es = 0.0;
     if (ks > 0.0) {
@@ -270,15 +276,16 @@ void FixLatticeWall::apply_forces(bool step_taken)
       for (int k = 0; k < 3; k++) s[k] += inc[k];
       s[dim] = 0.0;
       const double s2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
-      const double limit = mu * fn;
-      if (ks * ks * s2 > limit * limit) {
-        const double scale = limit / (ks * sqrt(s2));
+      // Coulomb sliding, Ks |S| <= mu Fn: the pair's limit -mu Fn with its Fn = -fn
+      // (negating both factors gives the same bits)
+      const double limit = friction_limit(mu, -fn);
+      if (slides(shear_force_squared(ks, s2), limit)) {
+        const double scale = slide_scale(ks, limit, s2);
         for (int k = 0; k < 3; k++) s[k] *= scale;
-        if (tally)
-          for (int k = 0; k < 3; k++) q += 0.5 * ks * ((s1[k] + s[k]) * inc[k] - s[k] * s[k] + s1[k] * s1[k]);
+        if (tally) wall_slide_heat(ks, s1, inc, s, q);
       }
       for (int k = 0; k < 3; k++) fs[k] = -ks * s[k];
-      es = 0.5 * ks * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+      es = spring_energy(ks, s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
     }
     fs[dim] = inward * fn;
     for (int k = 0; k < 3; k++) {
@@ -286,7 +293,7 @@ void FixLatticeWall::apply_forces(bool step_taken)
       wall_force[k] -= fs[k];
     }
     wall_force[3] += 1.0;
-    wall_energy += 0.5 * kn * delta * delta + es;
+    wall_energy += normal_energy(kn, delta) + es;
   }
 
   if (tally) {

@@ -21,6 +21,7 @@
 #include "fix_lattice_bond_store.h"
 #include "force.h"
 #include "lammps_api_compat.h"
+#include "lattice_bond_physics.h"
 #include "memory.h"
 #include "modify.h"
 #include "neigh_list.h"
@@ -31,6 +32,7 @@
 #include <cstring>
 
 using namespace LAMMPS_NS;
+using namespace LAMMPS_NS::LatticeBondPhysics;
 
 static constexpr double DEFAULT_TOLERANCE = 0.01;
 static constexpr int DEFAULT_MAXSLOT = 16;
@@ -488,9 +490,10 @@ PairLatticeBond::BondParams PairLatticeBond::bond_params(int i, int j) const
    how close intact record s of local atom i is to breaking at the current
    positions and springs (as the last force evaluation left them): the larger
    of the tensile ratio Fn / (Kn Xb) = Xn / Xb and the shear ratio
-   (Fs + mu_p Fn) / Fs0 (the Coulomb limit Fs <= Fs0 - mu_p Fn as a ratio).
-   A bond breaks when it exceeds 1.  mode: LB_BROKEN_TENSION or
-   LB_BROKEN_SHEAR, the larger one; 0 and LB_INTACT for other records
+   (Fs + mu_p Fn) / Fs0 (the Coulomb limit Fs <= Fs0 - mu_p Fn as a ratio;
+   tensile_ratio and shear_ratio in lattice_bond_physics.h).  A bond breaks
+   when it exceeds 1.  mode: LB_BROKEN_TENSION or LB_BROKEN_SHEAR, the larger
+   one; 0 and LB_INTACT for other records
 ------------------------------------------------------------------------- */
 
 PairLatticeBond::BondLoad PairLatticeBond::bond_load(int i, int s, int &mode) const
@@ -503,16 +506,15 @@ PairLatticeBond::BondLoad PairLatticeBond::bond_load(int i, int s, int &mode) co
   const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
   load.dist = sqrt(dx * dx + dy * dy + dz * dz);
   const Radii radius = radii();
-  const double xn = load.dist - (radius[i] + radius[j]);
+  const double xn = normal_stretch(load.dist, radius[i] + radius[j]);
   const bool intact = (fix_store->states(i)[s] == LB_INTACT);
-  if (!intact && xn >= 0.0) return load;    // an open contact carries no force
+  if (!intact && contact_open(xn)) return load;    // an open contact carries no force
   const BondParams &p = load.p;
-  load.fn = p.kn * xn;
-  load.fs = p.ks * sqrt(fix_store->spring_squared(i, s));
+  load.fn = normal_force(p.kn, xn);
+  load.fs = shear_force(p.ks, fix_store->spring_squared(i, s));
   if (!intact) return load;
-  const double tension = xn / p.xb;
-  const double coulomb = load.fs + p.mu_p * load.fn;
-  const double shear = (p.fs0 > 0.0) ? coulomb / p.fs0 : (coulomb > 0.0 ? BIG : 0.0);
+  const double tension = tensile_ratio(xn, p.xb);
+  const double shear = shear_ratio(load.fs, p.mu_p, load.fn, p.fs0);
   mode = (tension >= shear) ? LB_BROKEN_TENSION : LB_BROKEN_SHEAR;
   load.ratio = MAX(tension, shear);
   return load;
@@ -1640,17 +1642,6 @@ template <int NC> static inline void clear_spring(double *sh)
 }
 
 /* ----------------------------------------------------------------------
-   an intact bond breaks in shear when its shear force (squared: fs2) exceeds
-   the Coulomb limit Fs0 - mu_p Fn, or when that limit is negative
-------------------------------------------------------------------------- */
-
-static inline bool breaks_in_shear(double fs0, double mu_p, double fn, double fs2)
-{
-  const double limit = fs0 - mu_p * fn;
-  return fs2 > limit * limit || limit < 0.0;
-}
-
-/* ----------------------------------------------------------------------
    the force loop over records (docs/theory.md, "The model"), compiled per feature
    set F (see scene_features):
    LB_EV: tally energy/virial; LB_TALLY: accumulate breaking and frictional
@@ -1663,15 +1654,10 @@ static inline bool breaks_in_shear(double fs0, double mu_p, double fn, double fs
    each bond scales its type pair's parameters by its stiffness and
    strength factors (scaled_params).
 
-   Heat is the energy a record's springs lose other than by doing work on the
-   particles, with the work over a step taken by the trapezoidal rule, which is
-   what velocity Verlet conserves: for a shear spring going from s1 (rotated
-   into the new tangent plane) through the tangential increment dst to s2,
-       Q = Ks/2 [ (s1 + s2).dst - |s2|^2 + |s1|^2 ],
-   which is 0 while the spring is elastic (s2 = s1 + dst), Fs dS of Liu et al.
-   (2017) while it slides, and the spring's energy when it lets go (s2 = 0).
-   A normal spring that breaks at stretch xn (xp at the last step) releases
-   Kn/4 (xp^2 + xn^2): its energy minus the work it does during that step.
+   The physics of a record (stretch, break tests, the 2D and 3D spring
+   updates, Coulomb sliding, the heat of each event, the energy) is in
+   lattice_bond_physics.h, with the formulas; this loop decides which of them
+   a record needs and applies the forces.
 ------------------------------------------------------------------------- */
 
 template <int F> void PairLatticeBond::eval()
@@ -1779,7 +1765,7 @@ template <int F> void PairLatticeBond::eval()
         const double rr = rlen[s];
         const double nx = unit[0][s], ny = unit[1][s], nz = PLANAR ? 0.0 : unit[2][s];
         const double touch = EQUAL ? touch_equal : radi + radius[j];    // rest length
-        const double xn = rr - touch;    // normal stretch, tension positive
+        const double xn = normal_stretch(rr, touch);    // tension positive
         // this step's relative displacement (dx minus its value at the last step)
         const double ddx = dxi - disp[j][0], ddy = dyi - disp[j][1];
         const double ddz = PLANAR ? 0.0 : dzi - disp[j][2];
@@ -1788,14 +1774,11 @@ template <int F> void PairLatticeBond::eval()
         double ux = ddx, uy = ddy, uz = ddz;
         if (COROTATE) remove_rigid_rotation<PLANAR>(w[i], w[j], dx, dy, dz, ux, uy, uz);
 
-        // 2D: the tangential part of it along t = z x n = (-ny, nx)
-        // taken along the tangent at mid-step, which makes the update time-reversible:
-        // t_mid . u = (t . u) r / |d - u/2| = (t . u)(1 + (n . u) / (2 r)) to second order
-        const double dtan =
-            PLANAR ? (uy * nx - ux * ny) * (1.0 + 0.5 * (ux * nx + uy * ny) * rinvs[s]) : 0.0;
+        // 2D: its part along the tangent t = z x n at mid-step
+        const double dtan = PLANAR ? planar_increment(nx, ny, ux, uy, rinvs[s]) : 0.0;
 
         int state = st[s];
-        if (RARE(state == LB_INTACT && xn > p.xb && can_break)) {
+        if (RARE(state == LB_INTACT && breaks_in_tension(xn, p.xb) && can_break)) {
           // tensile break: both springs let go
           st[s] = LB_BROKEN_TENSION;
           state = LB_BROKEN_TENSION;
@@ -1805,7 +1788,7 @@ template <int F> void PairLatticeBond::eval()
             clear_spring<NC>(sh);
           }
         }
-        if (RARE(state != LB_INTACT && xn >= 0.0)) {
+        if (RARE(state != LB_INTACT && contact_open(xn))) {
           // open contact: no force, no memory
           if (TALLY)
             q_friction += PLANAR ? planar_release(sh, p.ks, dtan) : spring_release(sh, p.ks, ddx, ddy, ddz);
@@ -1813,15 +1796,16 @@ template <int F> void PairLatticeBond::eval()
           continue;
         }
 
-        const double fn = p.kn * xn;    // normal force, tension positive
+        const double fn = normal_force(p.kn, xn);    // tension positive
         double fsx = 0.0, fsy = 0.0, fsz = 0.0, es = 0.0;
 
-        if (state == LB_INTACT && !has_shear && p.fs0 - p.mu_p * fn < 0.0 && can_break) {
+        if (state == LB_INTACT && !has_shear && coulomb_limit(p.fs0, p.mu_p, fn) < 0.0 &&
+            can_break) {
           // no shear spring: the bond fails in shear only when its Coulomb
           // limit itself becomes negative (tension above Fs0/mu_p)
           st[s] = LB_BROKEN_SHEAR;
           state = LB_BROKEN_SHEAR;
-          if (xn >= 0.0) {
+          if (contact_open(xn)) {
             if (TALLY)
               q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
             continue;
@@ -1834,12 +1818,12 @@ template <int F> void PairLatticeBond::eval()
           // pair, so it needs no projection and keeps its length exactly
           const double s1 = sh[0];
           double sig = s1 + dtan;
-          const double fs2 = p.ks * p.ks * sig * sig;
+          const double fs2 = planar_force_squared(p.ks, sig);
           const bool broke_now =
               state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break);
           if (broke_now) state = st[s] = LB_BROKEN_SHEAR;
           if (RARE(state != LB_INTACT)) {
-            if (xn >= 0.0) {
+            if (contact_open(xn)) {
               // broken in shear while in tension: the contact is open
               if (TALLY) {
                 q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
@@ -1849,9 +1833,9 @@ template <int F> void PairLatticeBond::eval()
               continue;
             }
             if (FRICTION) {
-              const double limit = -p.mu_p * fn;    // sliding friction of a contact
-              if (fs2 > limit * limit) {
-                const double slid = std::copysign(limit / p.ks, sig);
+              const double limit = friction_limit(p.mu_p, fn);    // sliding friction of a contact
+              if (slides(fs2, limit)) {
+                const double slid = planar_slid(p.ks, limit, sig);
                 if (TALLY) {
                   const double q = planar_heat(p.ks, s1, dtan, slid);
                   if (broke_now) q_break_s += q;
@@ -1869,84 +1853,64 @@ template <int F> void PairLatticeBond::eval()
           // force on the owner -Ks sig t
           fsx = p.ks * sig * ny;
           fsy = -p.ks * sig * nx;
-          if (EVFLAG) es = 0.5 * p.ks * sig * sig;
+          if (EVFLAG) es = planar_spring_energy(p.ks, sig);
         } else if (!PLANAR && has_shear && (FRICTION || state == LB_INTACT)) {
-          double s0x = sh[0], s0y = sh[1], s0z = sh[2];
-          // shear_frame corotational: the spring turned with the pair's rotation
-          if (COROTATE) rotate_spring(w[i], w[j], s0x, s0y, s0z);
-          // the spring turned into the new tangent plane (its normal part
-          // dropped) plus the tangential part of this step's relative
-          // displacement, in one projection of their sum
-          const double sn = s0x * nx + s0y * ny + s0z * nz;
-          const double dn = ux * nx + uy * ny + uz * nz;
-          const double un = sn + dn;
-          double sx = (s0x + ux) - un * nx, sy = (s0y + uy) - un * ny, sz = (s0z + uz) - un * nz;
-          double s2 = sx * sx + sy * sy + sz * sz;
-          // the two parts (for the heat): the turned old spring and the increment
-          double s1x = s0x - sn * nx, s1y = s0y - sn * ny, s1z = s0z - sn * nz;
-          const double tx = ux - dn * nx, ty = uy - dn * ny, tz = uz - dn * nz;
-          if (RARE(sn * sn > 1.0e-12 * s2)) {
-            // the pair turned noticeably in one step (by more than about 1e-6
-            // rad): the turned spring keeps its length
-            const double old2 = s0x * s0x + s0y * s0y + s0z * s0z;
-            const double new2 = s1x * s1x + s1y * s1y + s1z * s1z;
-            if (new2 > 0.0) {
-              const double scale = sqrt(old2 / new2);
-              s1x *= scale;
-              s1y *= scale;
-              s1z *= scale;
-            }
-            sx = s1x + tx;
-            sy = s1y + ty;
-            sz = s1z + tz;
-            s2 = sx * sx + sy * sy + sz * sz;
-          }
-          const double fs2 = p.ks * p.ks * s2;
-          const bool broke_now =
-              state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break);
-          if (broke_now) state = st[s] = LB_BROKEN_SHEAR;
-          if (RARE(state != LB_INTACT)) {
-            if (xn >= 0.0) {
-              // broken in shear while in tension: the contact is open
-              if (TALLY) {
-                const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, none[3] = {0.0, 0.0, 0.0};
-                q_break_n +=
-                    normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
-                q_break_s += shear_heat(p.ks, s1, t, none);
-              }
-              clear_spring<NC>(sh);
-              continue;
-            }
-            if (FRICTION) {
-              const double limit = -p.mu_p * fn;    // sliding friction of a contact
-              if (fs2 > limit * limit) {
-                const double scale = (s2 > 0.0) ? limit / (p.ks * sqrt(s2)) : 0.0;
-                sx *= scale;
-                sy *= scale;
-                sz *= scale;
+          // compiled only into the 3D loops: the 2D loops' code does not depend on it
+          if constexpr (!PLANAR) {
+            double s0x = sh[0], s0y = sh[1], s0z = sh[2];
+            // shear_frame corotational: the spring turned with the pair's rotation
+            if (COROTATE) rotate_spring(w[i], w[j], s0x, s0y, s0z);
+            // turned into the new tangent plane, plus the tangential increment
+            const SpringStep step = spring_step(nx, ny, nz, s0x, s0y, s0z, ux, uy, uz);
+            double sx = step.sx, sy = step.sy, sz = step.sz;
+            const double fs2 = shear_force_squared(p.ks, step.s2);
+            const bool broke_now =
+                state == LB_INTACT && RARE(breaks_in_shear(p.fs0, p.mu_p, fn, fs2) && can_break);
+            if (broke_now) state = st[s] = LB_BROKEN_SHEAR;
+            if (RARE(state != LB_INTACT)) {
+              // the two parts of the step (for the heat): the turned old spring and the increment
+              const double s1[3] = {step.s1x, step.s1y, step.s1z}, t[3] = {step.tx, step.ty, step.tz};
+              if (contact_open(xn)) {
+                // broken in shear while in tension: the contact is open
                 if (TALLY) {
-                  const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, s2[3] = {sx, sy, sz};
-                  const double q = shear_heat(p.ks, s1, t, s2);
-                  if (broke_now) q_break_s += q;
-                  else q_friction += q;
+                  const double none[3] = {0.0, 0.0, 0.0};
+                  q_break_n += normal_release(touch, p.kn, xn, dx - ddx, dy - ddy, dz - ddz);
+                  q_break_s += shear_heat(p.ks, s1, t, none);
                 }
+                clear_spring<NC>(sh);
+                continue;
               }
-            } else {
-              // broke in shear just now: a frictionless contact keeps no spring
-              if (TALLY) {
-                const double s1[3] = {s1x, s1y, s1z}, t[3] = {tx, ty, tz}, none[3] = {0.0, 0.0, 0.0};
-                q_break_s += shear_heat(p.ks, s1, t, none);
+              if (FRICTION) {
+                const double limit = friction_limit(p.mu_p, fn);    // sliding friction of a contact
+                if (slides(fs2, limit)) {
+                  const double scale = slide_scale(p.ks, limit, step.s2);
+                  sx *= scale;
+                  sy *= scale;
+                  sz *= scale;
+                  if (TALLY) {
+                    const double s2[3] = {sx, sy, sz};
+                    const double q = shear_heat(p.ks, s1, t, s2);
+                    if (broke_now) q_break_s += q;
+                    else q_friction += q;
+                  }
+                }
+              } else {
+                // broke in shear just now: a frictionless contact keeps no spring
+                if (TALLY) {
+                  const double none[3] = {0.0, 0.0, 0.0};
+                  q_break_s += shear_heat(p.ks, s1, t, none);
+                }
+                sx = sy = sz = 0.0;
               }
-              sx = sy = sz = 0.0;
             }
+            sh[0] = sx;
+            sh[1] = sy;
+            sh[2] = sz;
+            fsx = -p.ks * sx;
+            fsy = -p.ks * sy;
+            fsz = -p.ks * sz;
+            if (EVFLAG) es = spring_energy(p.ks, sx * sx + sy * sy + sz * sz);
           }
-          sh[0] = sx;
-          sh[1] = sy;
-          sh[2] = sz;
-          fsx = -p.ks * sx;
-          fsy = -p.ks * sy;
-          fsz = -p.ks * sz;
-          if (EVFLAG) es = 0.5 * p.ks * (sx * sx + sy * sy + sz * sz);
         } else if (has_shear) {
           clear_spring<NC>(sh);    // a frictionless closed contact
         }
@@ -1964,7 +1928,7 @@ template <int F> void PairLatticeBond::eval()
         }
 
         if (EVFLAG) {
-          const double e = eflag_either ? 0.5 * fn * xn + es : 0.0;
+          const double e = eflag_either ? normal_energy_from_force(fn, xn) + es : 0.0;
           ev_tally_xyz(i, j, nlocal, 1, e, 0.0, fx, fy, fz, dx, dy, dz);
         }
       }
@@ -1979,61 +1943,6 @@ template <int F> void PairLatticeBond::eval()
     heat[1] += q_break_s;
     heat[2] += q_friction;
   }
-}
-
-/* ----------------------------------------------------------------------
-   heat of a normal spring that breaks at stretch xn: Kn/4 (xp^2 + xn^2),
-   xp its stretch at the last step, when the separation was (px, py, pz)
-   (touch = ri + rj)
-------------------------------------------------------------------------- */
-
-double PairLatticeBond::normal_release(double touch, double kn, double xn, double px, double py,
-                                       double pz)
-{
-  const double xp = sqrt(px * px + py * py + pz * pz) - touch;
-  return 0.25 * kn * (xp * xp + xn * xn);
-}
-
-/* ----------------------------------------------------------------------
-   heat of a shear spring going from s1 through the increment t to s2:
-   Ks/2 [(s1 + s2).t - |s2|^2 + |s1|^2]
-------------------------------------------------------------------------- */
-
-double PairLatticeBond::shear_heat(double ks, const double *s1, const double *t, const double *s2)
-{
-  double q = 0.0;
-  for (int k = 0; k < 3; k++) q += (s1[k] + s2[k]) * t[k] - s2[k] * s2[k] + s1[k] * s1[k];
-  return 0.5 * ks * q;
-}
-
-/* ----------------------------------------------------------------------
-   heat of a shear spring that lets go this step (s2 = 0 in the heat
-   formula above): Ks/2 (s1.dst + |s1|^2), (tx, ty, tz) the step's relative
-   displacement; its normal part is of second order in the step and is kept,
-   the spring is not rotated
-------------------------------------------------------------------------- */
-
-double PairLatticeBond::spring_release(const double *sh, double ks, double tx, double ty, double tz)
-{
-  if (sh[0] == 0.0 && sh[1] == 0.0 && sh[2] == 0.0) return 0.0;
-  const double t[3] = {tx, ty, tz};
-  const double none[3] = {0.0, 0.0, 0.0};
-  return shear_heat(ks, sh, t, none);
-}
-
-/* ----------------------------------------------------------------------
-   the same two heats for the signed 2D spring: Ks/2 [(s1 + s2) t - s2^2 + s1^2]
-   and its release (s2 = 0)
-------------------------------------------------------------------------- */
-
-double PairLatticeBond::planar_heat(double ks, double s1, double t, double s2)
-{
-  return 0.5 * ks * ((s1 + s2) * t - s2 * s2 + s1 * s1);
-}
-
-double PairLatticeBond::planar_release(const double *sh, double ks, double t)
-{
-  return planar_heat(ks, sh[0], t, 0.0);
 }
 
 /* ----------------------------------------------------------------------
@@ -2119,10 +2028,10 @@ double PairLatticeBond::local_elastic_energy() const
       const int j = idx[s];
       if (j < 0) continue;
       const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-      const double xn = sqrt(dx * dx + dy * dy + dz * dz) - (radius[i] + radius[j]);
-      if (st[s] != LB_INTACT && xn >= 0.0) continue;
+      const double xn = normal_stretch(sqrt(dx * dx + dy * dy + dz * dz), radius[i] + radius[j]);
+      if (st[s] != LB_INTACT && contact_open(xn)) continue;
       const BondParams p = bond_params(i, j);
-      energy += 0.5 * p.kn * xn * xn + 0.5 * p.ks * fix_store->spring_squared(i, s);
+      energy += record_energy(p.kn, xn, p.ks, fix_store->spring_squared(i, s));
     }
   }
   return energy;

@@ -231,12 +231,6 @@ class PairLatticeBond : public Pair {
   template <std::size_t... I>
   static constexpr std::array<EvalFn, sizeof...(I)> make_eval_table(std::index_sequence<I...>);
   static const std::array<EvalFn, LB_NFEATURES> EVAL_TABLE;
-  static double normal_release(double touch, double kn, double xn, double px, double py,
-                               double pz);
-  static double shear_heat(double ks, const double *s1, const double *t, const double *s2);
-  static double spring_release(const double *shear, double ks, double tx, double ty, double tz);
-  static double planar_heat(double ks, double s1, double t, double s2);
-  static double planar_release(const double *shear, double ks, double t);
 };
 
 }    // namespace LAMMPS_NS
