@@ -56,37 +56,32 @@ TOLERANCE = 0.01          # pair_style lattice/bond's default bonding tolerance
 # 1e-9 relative change of Kn moves the energy by ~1e-9 (test_kn_change_fails).
 EPSILON = 5e-13
 
+def deck_config(dim: int, pair_coeff: list[str]) -> dict:
+    """The settings shared by the 2D and 3D decks, with their own coefficients."""
+    return dict(dim=dim, input_file=f"in.lattice_bond_{dim}d", data=f"data.lattice_bond_{dim}d",
+                prerequisites=["pair lattice/bond", "atom sphere"], pair_style="lattice/bond",
+                pair_coeff=pair_coeff, post_commands=["neighbor 1.0e-4 bin"])
+
+
+# type 1: quartz (2D per metre of thickness) or quartzite (3D); type 2: stiffer,
+# weaker, more frictional; 1-2: bonds without shear spring (Ks = 0); type 3: a few
+# particles never bonded to types 1 and 2 (bond no): frictional contacts, closed
+# where the random offsets press them together; 2-3 slides easily
 DECKS = {
-    "pair-lattice_bond_2d.yaml": dict(
-        dim=2, input_file="in.lattice_bond_2d", data="data.lattice_bond_2d",
-        prerequisites=["pair lattice/bond", "atom sphere"],
-        pair_style="lattice/bond",
-        # type 1: quartz (per metre of thickness); type 2: stiffer, weaker, more
-        # frictional; 1-2: bonds without shear spring (Ks = 0); type 3: a few
-        # particles never bonded to types 1 and 2 (bond no): frictional contacts,
-        # closed where the random offsets press them together; 2-3 slides easily
-        pair_coeff=[
-            "* * 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915",
-            "2 2 9.0e10 3.0e10 1.5e-7 2.0e4 0.5",
-            "1 2 7.5e10 0.0 1.7e-7 3.0e4 0.3",
-            "1 3 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.4 bond no",
-            "2 3 9.0e10 3.0e10 1.5e-7 2.0e4 0.02 bond no",
-        ],
-        post_commands=["neighbor 1.0e-4 bin"],
-    ),
-    "pair-lattice_bond_3d.yaml": dict(
-        dim=3, input_file="in.lattice_bond_3d", data="data.lattice_bond_3d",
-        prerequisites=["pair lattice/bond", "atom sphere"],
-        pair_style="lattice/bond",
-        pair_coeff=[
-            "* * 4.6794e7 8.0679e6 1.7037e-7 18.452 0.39645",
-            "2 2 6.0e7 1.0e7 1.4e-7 15.0 0.5",
-            "1 2 5.5e7 0.0 1.6e-7 16.0 0.3",
-            "1 3 4.6794e7 8.0679e6 1.7037e-7 18.452 0.4 bond no",
-            "2 3 6.0e7 1.0e7 1.4e-7 15.0 0.02 bond no",
-        ],
-        post_commands=["neighbor 1.0e-4 bin"],
-    ),
+    "pair-lattice_bond_2d.yaml": deck_config(2, [
+        "* * 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915",
+        "2 2 9.0e10 3.0e10 1.5e-7 2.0e4 0.5",
+        "1 2 7.5e10 0.0 1.7e-7 3.0e4 0.3",
+        "1 3 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.4 bond no",
+        "2 3 9.0e10 3.0e10 1.5e-7 2.0e4 0.02 bond no",
+    ]),
+    "pair-lattice_bond_3d.yaml": deck_config(3, [
+        "* * 4.6794e7 8.0679e6 1.7037e-7 18.452 0.39645",
+        "2 2 6.0e7 1.0e7 1.4e-7 15.0 0.5",
+        "1 2 5.5e7 0.0 1.6e-7 16.0 0.3",
+        "1 3 4.6794e7 8.0679e6 1.7037e-7 18.452 0.4 bond no",
+        "2 3 6.0e7 1.0e7 1.4e-7 15.0 0.02 bond no",
+    ]),
 }
 
 D = 1.0e-3                      # particle diameter

@@ -88,6 +88,13 @@ def write_cell(tmp_path, dim: int, name: str) -> tuple[PeriodicCell, str]:
     return cell, str(path)
 
 
+def cell_box(lattice) -> np.ndarray:
+    """Box matrix (columns: the edges a, b, c) of a lattice written to a data file."""
+    xy, xz, yz = lattice.tilt or (0.0, 0.0, 0.0)
+    lx, ly, lz = lattice.box[:, 1] - lattice.box[:, 0]
+    return np.array([[lx, xy, xz], [0.0, ly, yz], [0.0, 0.0, lz]])
+
+
 def box_matrix(lmp) -> np.ndarray:
     lo, hi, xy, yz, xz, _, _ = lmp.extract_box()
     return np.array([[hi[0] - lo[0], xy, xz], [0.0, hi[1] - lo[1], yz], [0.0, 0.0, hi[2] - lo[2]]])
@@ -312,6 +319,18 @@ BAROSTATS = {
 }
 
 
+def barostat_command(barostat: str, dim: int) -> str:
+    """The commands of one of BAROSTATS for a cell of dimension dim: z held at zero
+    stress too in 3D, and the xy shear stress for the barostats that take triclinic
+    boxes (press/berendsen takes orthogonal ones only)."""
+    command = BAROSTATS[barostat].replace("PTEMP", PTEMP[dim])
+    if dim == 3:
+        command = command.replace("y 0 0 2e-8", "y 0 0 2e-8 z 0 0 2e-8")
+    if barostat != "press/berendsen":
+        command = command.replace("y 0 0 2e-8", "y 0 0 2e-8 xy 0 0 2e-8")
+    return command
+
+
 @pytest.mark.parametrize("shear_frame", ["fixed", "corotational"])
 @pytest.mark.parametrize("barostat", list(BAROSTATS))
 @pytest.mark.parametrize("dim", [2, 3])
@@ -322,11 +341,7 @@ def test_barostat_stress_is_the_bond_sum(tmp_path, lmp_instance, dim, barostat, 
     # press/berendsen takes orthogonal boxes only: the paper cell
     cell, data = write_cell(tmp_path, dim, "paper" if barostat == "press/berendsen" else "turned")
     lmp = lmp_instance
-    command = BAROSTATS[barostat].replace("PTEMP", PTEMP[dim])
-    if dim == 3:
-        command = command.replace("y 0 0 2e-8", "y 0 0 2e-8 z 0 0 2e-8")
-    if barostat != "press/berendsen":
-        command = command.replace("y 0 0 2e-8", "y 0 0 2e-8 xy 0 0 2e-8")
+    command = barostat_command(barostat, dim)
     lmp.commands_string(deck(dim, data, shear_frame))
     lmp.command("run 0 post no")
     P0 = pressure(lmp)
@@ -516,8 +531,8 @@ def test_fix_deform_breaks_the_first_bonds_at_the_conversions_strain(tmp_path, d
     write_data(cell.lattice, data, MASS[dim], atom_style="atomic")
     eps_f = predicted_failure_strain(dim)
     rate = eps_f / (FAIL_STEPS * DT)
-    h0 = np.diag(cell.lattice.box[:, 1] - cell.lattice.box[:, 0])
-    variables, args, _ = uniaxial_stress_deform(dim, h0, rate)
+    h0 = cell_box(cell.lattice)
+    variables, args, ratio = uniaxial_stress_deform(dim, h0, rate)
     text = deck(dim, str(data)) + variables + f"""
 fix             strain all deform 1 {args} remap x
 thermo          1
@@ -537,8 +552,7 @@ run             {int(1.2 * FAIL_STEPS)}
     # every bond of the most stretched directions at once, and only those
     axis = 1 if dim == 2 else 2
     n = cell.bonds / np.linalg.norm(cell.bonds, axis=1)[:, None]
-    lateral_strain = -uniaxial_stress_deform(dim, h0, rate)[2]
-    stretch = n[:, axis] ** 2 + lateral_strain * (1.0 - n[:, axis] ** 2)
+    stretch = n[:, axis] ** 2 - ratio * (1.0 - n[:, axis] ** 2)
     families = int(np.sum(stretch > (1.0 - 1e-9) * stretch.max()))
     assert broken[first] == families * cell.lattice.n
     assert th["c_bonds[3]"][first] == 0, "broke in shear, the conversion's mode is tension"
@@ -565,7 +579,7 @@ def test_heterogeneous_periodic_lattice_breaks_its_weakest_bonds_not_the_seam(tm
     write_data(lat, data, MASS[dim], atom_style="atomic")
     eps_f = predicted_failure_strain(dim)
     rate = eps_f / (FAIL_STEPS * DT)
-    h0 = np.diag(lat.box[:, 1] - lat.box[:, 0])
+    h0 = cell_box(lat)
     variables, args, _ = uniaxial_stress_deform(dim, h0, rate)
     lmp = lmp_instance
     n_first, seam_first, seam_share = 20, 0, []
@@ -712,22 +726,15 @@ def test_change_box_and_barostats_on_two_ranks(tmp_path, dim):
     paper, pdata = write_cell(tmp_path, dim, "paper")
     kn, ks = BOND[dim][:2]
     mix = strain_cases(dim)[-1][1]
+    lo = turned.lattice.box[:, 0]
+    change = change_box_command(strained_box(cell_box(turned.lattice), mix), lo, dim, True)
     cases = []    # (cell, frame, deck) per segment; each segment: run 0, change, run 0
     for frame in ("fixed", "corotational"):
-        h0 = np.array([[turned.lattice.box[0, 1], turned.lattice.tilt[0], turned.lattice.tilt[1]],
-                       [0.0, turned.lattice.box[1, 1], turned.lattice.tilt[2]],
-                       [0.0, 0.0, turned.lattice.box[2, 1] - turned.lattice.box[2, 0]]])
-        lo = np.array([0.0, 0.0, turned.lattice.box[2, 0]])
-        change = change_box_command(strained_box(h0, mix), lo, dim, True)
         cases.append((turned, frame, deck(dim, tdata, frame) + "run 0 post no\n" + change +
                       "\nrun 0 post no\nclear\n"))
-        for barostat, command in BAROSTATS.items():
+        for barostat in BAROSTATS:
             cell, data = (paper, pdata) if barostat == "press/berendsen" else (turned, tdata)
-            command = command.replace("PTEMP", PTEMP[dim])
-            if dim == 3:
-                command = command.replace("y 0 0 2e-8", "y 0 0 2e-8 z 0 0 2e-8")
-            if barostat != "press/berendsen":
-                command = command.replace("y 0 0 2e-8", "y 0 0 2e-8 xy 0 0 2e-8")
+            command = barostat_command(barostat, dim)
             cases.append((cell, frame, deck(dim, data, frame) + "run 0 post no\n" + command +
                           "\nrun 600 post no\nunfix baro\nrun 0 post no\nclear\n"))
     res = run_deck("".join(text for _, _, text in cases), tmp_path, np=2)

@@ -103,7 +103,7 @@ class FixLatticeBondStore : public Fix {
   // evaluations (change_box, fix deform, barostats) that shift changes with it,
   // and the ghost moves by its owner's displacement plus shift(p).  A flip of a
   // tilted box (fix deform flip) is a new choice of lattice vectors, not a
-  // deformation: it is undone first, with the integers of `unflip`, so that
+  // deformation: it is undone first, with the integers k, l, m, so that
   // p refers to the same image before and after.  Formed by update_displacements()
   struct BoxStep {
     bool moved;        // the box differs from the last force evaluation's
