@@ -150,6 +150,11 @@ class DeckSpec:
         """Loading axis: y in 2D, z in 3D."""
         return "y" if self.dim == 2 else "z"
 
+    @property
+    def lateral_axes(self) -> tuple[str, ...]:
+        """The axes across the load: x in 2D, x and y in 3D."""
+        return ("x",) if self.dim == 2 else ("x", "y")
+
 
 # the failure halt is armed once the peak stress exceeds this fraction of Kn Xb / d^(dim-1),
 # the tensile stress scale of one bond (Tu is 2 (2D) or 3.1 (3D) times it)
@@ -213,7 +218,7 @@ neigh_modify    every 1 delay 0 check yes binsize {1.1 * spec.d:.6g}
 atom_modify     sort 1000 {1.1 * spec.d:.6g}
 """
     if periodic:
-        lateral = ("x",) if spec.dim == 2 else ("x", "y")
+        lateral = spec.lateral_axes
         text = opening + f"""
 # strains from the box (the particles follow it: fix deform ... remap x)
 variable        L0 equal $(l{spec.axis})
@@ -260,7 +265,7 @@ def _gauges(spec: DeckSpec) -> str:
     zone = ("$(v_lo0+0.25*v_H0)", "$(v_hi0-0.25*v_H0)")
     text = "# lateral strain gauges: outermost particles of the side faces at mid-height\n"
     names = []
-    for a in ("x",) if spec.dim == 2 else ("x", "y"):
+    for a in spec.lateral_axes:
         k = "xyz".index(a) + 1
         for side, lo, hi in (("hi", f"$(bound(all,{a}max)-{0.6 * d!r})", "INF"),
                              ("lo", "INF", f"$(bound(all,{a}min)+{0.6 * d!r})")):
@@ -295,7 +300,7 @@ def _loading(spec: DeckSpec) -> str:
     ax, d = spec.axis, spec.d
     k = "xyz".index(ax) + 1  # index of the axis in fix outputs
     if spec.test == "periodic":
-        lateral = ("x",) if spec.dim == 2 else ("x", "y")
+        lateral = spec.lateral_axes
         pdamp = 20.0 * spec.dt
         free = " ".join(f"{a} 0.0 0.0 {pdamp:.6g}" for a in lateral)
         return f"""
@@ -350,7 +355,7 @@ variable        stress equal 0.5*(c_fbot-c_ftop)/{spec.area:.8g}
     sides = ""
     if spec.test == "confined":
         # side faces: x in 2D (area = height x unit thickness), x and y in 3D
-        lateral = "x" if spec.dim == 2 else "xy"
+        lateral = spec.lateral_axes
         # areas between the outer particle centres, the convention of the
         # platen stress (Lattice.loaded_area), so sigma1 and sigma3 agree
         sides = "# ---- confinement: smooth side walls holding the confining stress (servo) ----\n"
