@@ -19,11 +19,13 @@ and loads the block along its loading axis (y in 2D, z in 3D):
   holds the lateral faces at zero stress: uniaxial tension with no boundary
   layer; the stress is the virial pressure.
 
-A heterogeneous block (``DeckSpec.grains``, :mod:`bonded_lattice.grains`) has
-its grain ids and stiffness factors in the data file's ``Grains`` section; the
-deck defines ``fix grains all property/atom i_grain d_stiffness ghost yes``
-before ``read_data ... fix grains NULL Grains`` and passes the grain, strength
-and boundary options to ``pair_style lattice/bond``.
+The deck is made of the shared sections of :mod:`bonded_lattice.deck` (the
+opening with the pair style, the integrator, the platens and side walls, the
+outputs) around the tests' own strain measurements and loading.  A
+heterogeneous block (``DeckSpec.grains``, :mod:`bonded_lattice.grains`) has its
+grain ids and stiffness factors in the data file's ``Grains`` section, read
+into ``fix property/atom`` and named, with the strength options, to
+``pair_style lattice/bond`` (:class:`bonded_lattice.deck.PairStyle`).
 
 Two loading schedules:
 
