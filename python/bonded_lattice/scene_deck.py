@@ -25,6 +25,8 @@ from .scene_model import SceneModel, build_model
 DATA_FILE = "data.scene"
 SCENE_COLUMNS = ("k", "step", "exx", "eyy", "sxx", "syy", "intact", "tension", "shear",
                  "contacts", "growth")
+# the thermo columns, before the energy (pe while minimising, ke while running)
+THERMO_COLUMNS = f"step v_exx v_eyy v_sxx v_syy {BOND_COUNTS}"
 # memory of a scene run: bytes per particle (atoms, 3 bond records, neighbour lists, the
 # final bond dump's buffers) and per rank, fitted to the peak resident size of 10-step runs
 # on 1 rank of 184,800 and 737,600 particles (213 and 775 MB; docs/scenes.md)
@@ -124,9 +126,6 @@ def _line_vars() -> str:
     return f"${{k}} $(step) ${{exx}} ${{eyy}} ${{sxx}} ${{syy}} {counts} ${{growth}}"
 
 
-COLUMNS = f"step v_exx v_eyy v_sxx v_syy {BOND_COUNTS}"   # thermo, before the energy column
-
-
 def _quasistatic(scene: Scene, fb: float) -> str:
     if scene.kind == "expanding":
         step = ("variable        growth equal (1+{e})^v_k-1\n"
@@ -149,7 +148,7 @@ def _quasistatic(scene: Scene, fb: float) -> str:
 # then relax (FIRE) until no force component exceeds {scene.ftol:g} x Kn Xb, break the
 # most over-stressed bond, relax again, ... until no bond exceeds its threshold
 min_style       fire
-{thermo(COLUMNS + " pe", 1000000)}run             0 post no
+{thermo(THERMO_COLUMNS + " pe", 1000000)}run             0 post no
 variable        growth equal 0
 variable        k equal 0
 print           "# {' '.join(SCENE_COLUMNS)}" file scene.dat screen no
@@ -212,7 +211,7 @@ velocity        bottom set NULL $({ry!r}*(xcm(bottom,y)-v_yc)) NULL units box
 velocity        top set NULL $({ry!r}*(xcm(top,y)-v_yc)) NULL units box
 {growth}{integrator("all", scene.eta(), "inner", DAMPING_NOTE)}timestep        {dt!r}
 variable        k equal floor(step/{per_step})
-{thermo(COLUMNS + " ke", out_every)}print           "# {' '.join(SCENE_COLUMNS)}" file scene.dat screen no
+{thermo(THERMO_COLUMNS + " ke", out_every)}print           "# {' '.join(SCENE_COLUMNS)}" file scene.dat screen no
 fix             out all print {out_every} "{_line_vars()}" append scene.dat screen no
 {dumps}# the number of time steps; shorten a trial with -var nsteps 10
 variable        nsteps index {steps}
