@@ -169,7 +169,8 @@ def _scene(args: argparse.Namespace):
 
 
 def cmd_scene(args: argparse.Namespace) -> int:
-    from .scenes import expected_memory, run_scene, write_scene
+    from .scene_study import run_scene
+    from .scenes import expected_memory, write_scene
 
     scene = _scene(args)
     out = Path(args.out)

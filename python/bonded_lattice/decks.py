@@ -51,9 +51,9 @@ from typing import TextIO
 from .conversion import BondParameters
 from .grains import GrainPairOptions
 from .lattice import check_atom_style
+from .schedules import SCHEDULES  # the loading schedules' one vocabulary
 
 TESTS = ("tension", "compression", "elastic", "confined", "periodic")
-SCHEDULES = ("constant", "stepwise")
 SHEAR_FRAMES = ("fixed", "corotational")    # pair_style lattice/bond shear_frame
 
 
