@@ -157,7 +157,8 @@ def test_case_names_are_distinct(se):
     Case = se.Case
     names = {c.name for c in se.lattice_cases(se.FULL)}
     assert len(names) == len(se.lattice_cases(se.FULL))
-    assert Case("paper", "tension", 15, schedule="paper").name == "tension_n15_paper_r400_s1"
+    assert Case("paper", "tension", 15,
+                schedule="stepwise").name == "tension_n15_stepwise_r400_s1"
     assert Case("dt", "elastic", 30, dt_fraction=0.2).name == "elastic_n30_c100_f1_dt0.2"
     # exactly one papers' reference per test
     fams = [(c.family, c.test) for c in se.lattice_cases(se.FULL) if c.family == "paper"]

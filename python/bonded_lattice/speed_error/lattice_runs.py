@@ -43,8 +43,8 @@ class SpeedErrorRun(RockTest):
 
     def __init__(self, case: Case, out: Path) -> None:
         options: dict = {"damping": case.damping}
-        if case.schedule == "paper":
-            options.update(schedule="paper", relax_steps=case.relax_steps,
+        if case.schedule == "stepwise":
+            options.update(schedule="stepwise", relax_steps=case.relax_steps,
                            step_size=case.step_factor * PAPER_SCHEDULES[2]["step_size"][case.test])
         else:
             options.update(crossings=case.crossings)
@@ -58,10 +58,10 @@ class SpeedErrorRun(RockTest):
         case, plan = self.case, self.plan
         if case.dt_fraction is not None:
             # any time step (plan_test limits dt_scale to 2): same loading, steps rescaled
-            own = PAPER_SCHEDULES[2]["dt_fraction"] if case.schedule == "paper" else DEFAULT_DT_FRACTION
+            own = PAPER_SCHEDULES[2]["dt_fraction"] if case.schedule == "stepwise" else DEFAULT_DT_FRACTION
             dt = plan.dt * case.dt_fraction / own
             steps = int(math.ceil(plan.steps * plan.dt / dt))
-            if case.schedule == "paper":
+            if case.schedule == "stepwise":
                 raise ValueError("dt_fraction is for the constant schedule")
             self.plan = dataclasses.replace(plan, dt=dt, steps=steps,
                                             thermo_every=max(1, steps // THERMO_LINES))

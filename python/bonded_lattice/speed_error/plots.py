@@ -159,7 +159,7 @@ def plot_stepwise(lat: dict, path: Path) -> None:
     plt = _plt()
     fig, axes = plt.subplots(2, 2, figsize=(10, 7.5))
     for ax, q in zip(axes.ravel(), QUANTITIES):
-        pts = [p for p in points(lat["results"], q) if p["case"]["schedule"] == "paper"]
+        pts = [p for p in points(lat["results"], q) if p["case"]["schedule"] == "stepwise"]
         relax = sorted({p["case"]["relax_steps"] for p in pts}, reverse=True)
         for j, r in enumerate(relax):
             sel = sorted((p for p in pts if p["case"]["relax_steps"] == r),

@@ -156,6 +156,6 @@ def recommendation_text(lat: dict, s: Settings, V: dict, by_name: dict) -> str:
                 "wave-crossing times of the block and the papers' eta scales as 1/N, so the "
                 "setting should carry over to other sizes (the check confirms it for one); "
                 "3D blocks were not studied here, so rerun the rule there before changing the "
-                "3D defaults.  The stepwise `paper` schedule stays the reference for new kinds "
+                "3D defaults.  The `stepwise` schedule stays the reference for new kinds "
                 "of test.")
     return "\n".join(text)

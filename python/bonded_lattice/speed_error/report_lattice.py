@@ -74,7 +74,7 @@ def lattice_section(s: Settings, quick: bool, lat: dict, by_name: dict[str, dict
                      (r["case"]["crossings"], r["case"]["damping"]) ==
                      (DEFAULT["crossings"], DEFAULT["damping"])))]
         vals = [v for v in vals if v is not None]
-        near = [by_name.get(Case("stepwise", TEST_OF[q], s.n_strength, schedule="paper",
+        near = [by_name.get(Case("stepwise", TEST_OF[q], s.n_strength, schedule="stepwise",
                                  relax_steps=rr, step_factor=ff).name)
                 for rr, ff in ((100, 1), (400, 4))]
         near = [f"{_pct(r['errors'].get(q))} ({r['case']['relax_steps']} relax, step "
@@ -166,7 +166,7 @@ def lattice_section(s: Settings, quick: bool, lat: dict, by_name: dict[str, dict
             for q in QUANTITIES:
                 n = s.n_elastic if q in ("E", "nu") else s.n_strength
                 fam = "paper" if (r_, sf) == (400, 1) else "stepwise"
-                r = by_name.get(Case(fam, TEST_OF[q], n, schedule="paper", relax_steps=r_,
+                r = by_name.get(Case(fam, TEST_OF[q], n, schedule="stepwise", relax_steps=r_,
                                      step_factor=sf).name)
                 if r is None:
                     cells.append(" | ")

@@ -69,10 +69,12 @@ QUICK = Settings(
 class Case:
     """One lattice run."""
 
-    family: str            # constant, slow, dt, paper, stepwise, check, stability
+    # constant, slow, dt, paper (the papers' stepwise setting), stepwise (its variants),
+    # check, stability
+    family: str
     test: str              # elastic, tension, compression
     n: int
-    schedule: str = "constant"
+    schedule: str = "constant"   # constant or stepwise (bonded_lattice.schedules)
     crossings: float = 100.0
     damping: float = 1.0
     dt_fraction: float | None = None   # None: the schedule's own (0.1 / 0.107 sqrt(m/Kn))
@@ -81,9 +83,10 @@ class Case:
 
     @property
     def name(self) -> str:
+        """The run's folder name (unique within a family)."""
         base = f"{self.test}_n{self.n}"
-        if self.schedule == "paper":
-            base += f"_paper_r{self.relax_steps}_s{self.step_factor:g}"
+        if self.schedule == "stepwise":
+            base += f"_stepwise_r{self.relax_steps}_s{self.step_factor:g}"
         else:
             base += f"_c{self.crossings:g}_f{self.damping:g}"
         if self.dt_fraction is not None:
@@ -91,7 +94,8 @@ class Case:
         return base
 
     def label(self) -> str:
-        if self.schedule == "paper":
+        """The setting in words, for the report."""
+        if self.schedule == "stepwise":
             return f"stepwise, {self.relax_steps} relax, step x{self.step_factor:g}"
         text = f"constant, {self.crossings:g} crossings, damping {self.damping:g}"
         if self.dt_fraction is not None:
@@ -116,8 +120,8 @@ def lattice_cases(s: Settings) -> list[Case]:
             for sf in s.step_factors:
                 fam = "paper" if (r, sf) == (PAPER_KEY["relax_steps"], PAPER_KEY["step_factor"]) \
                     else "stepwise"
-                cases.append(Case(fam, test, n, schedule="paper", relax_steps=r, step_factor=sf))
+                cases.append(Case(fam, test, n, schedule="stepwise", relax_steps=r, step_factor=sf))
     # cheap first: the stepwise runs with many relaxation steps come last
-    return sorted(cases, key=lambda c: (c.schedule == "paper",
-                                        c.relax_steps / c.step_factor if c.schedule == "paper"
+    return sorted(cases, key=lambda c: (c.schedule == "stepwise",
+                                        c.relax_steps / c.step_factor if c.schedule == "stepwise"
                                         else c.crossings))
