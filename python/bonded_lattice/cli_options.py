@@ -57,16 +57,11 @@ def _loading_default(name: str) -> str:
 OPTIONS: dict[str, Option] = {
     "rock": _option("--rock", help="rock from the library (default %(default)s)"),
     "d": _option("--d", type=float, help="particle diameter in m (default %(default)g)"),
-    "n": _option("--n", type=int, help="particles across (2D) or elements along y (3D) of a "
-                 "test block, particles per row of a scene (default %(default)s)"),
-    "crossings": _option("--crossings", type=float,
-                         help="elastic-wave crossings of the block during the loading "
-                         "(quasi-static control; default %(default)s)"),
-    "damping": _option("--damping", type=float,
-                       help="viscous damping as a multiple of the papers' eta = sqrt(8 m Kn)/N "
-                       "(default %(default)s)"),
-    "grains": _option("--grains", type=int, metavar="N",
-                      help="N grains from a seeded Voronoi tessellation (default %(default)s)"),
+    # (the subcommands give these their own help: the same option means a little more there)
+    "n": _option("--n", type=int, help=""),
+    "crossings": _option("--crossings", type=float, help=""),
+    "damping": _option("--damping", type=float, help=""),
+    "grains": _option("--grains", type=int, metavar="N", help=""),
     "stiffness_sd": _option("--stiffness-sd", type=float,
                             help="standard deviation of the grains' stiffness factors (mean 1; "
                             "default %(default)s)"),
@@ -96,8 +91,11 @@ TEST_DEFAULTS = {"rock": "quartz", "dim": 2, "test": "compression", "n": 30,
 def add(p: argparse.ArgumentParser | argparse._ActionsContainer, name: str, default: Any,
         help: str | None = None) -> None:
     """Add :data:`OPTIONS` ``[name]`` to ``p`` with this subcommand's default (and, where
-    the option means something more specific there, its own help)."""
+    the option means something more specific there, its own help: needed where
+    :data:`OPTIONS` has none)."""
     opt = OPTIONS[name]
+    if not (help or opt.help):
+        raise ValueError(f"option {name!r} needs the subcommand's help text")
     kwargs = dict(opt.kwargs)
     if kwargs.get("action") != "store_true":
         kwargs["default"] = default
@@ -212,38 +210,46 @@ def heterogeneity_options(p: argparse.ArgumentParser) -> None:
     add(g, "grain_seed", model["seed"])
 
 
+# the options only ``scene`` takes that set one number of the Scene: {field: (flag, help)};
+# the type and the default are the field's
+SCENE_NUMBERS = {
+    "n_y": ("--ny", "rows (default: a square box)"),
+    "n_steps": ("--steps", "strain steps (default %(default)s)"),
+    "strain_step": ("--strain-step", "strain (or grain growth) per step (default %(default)g)"),
+    "ftol": ("--ftol", "relaxation tolerance, fraction of Kn Xb (default %(default)g)"),
+    "dt_fraction": ("--dt-fraction", "dynamic: time step as a fraction of the critical one "
+                    "(default %(default)s, at most 0.5)"),
+    "layer_thickness": ("--layer-thickness", "layer thickness, fraction of the box height "
+                        "(default %(default)s)"),
+    "layer_contrast": ("--contrast", "layer stiffness / matrix stiffness (default %(default)s)"),
+    "n_expanding": ("--expanding", "growing grains (default %(default)s)"),
+    "output_every": ("--output-every", "strain steps between lines of scene.dat (dynamic; "
+                     "default %(default)s)"),
+    "bond_dumps": ("--bond-dumps", "dump the bond records every this many strain steps (0: "
+                   "only at the end)"),
+}
+
+
 def scene_options(p: argparse.ArgumentParser) -> None:
     """Options of ``scene``: the shared ones with the defaults of :class:`Scene`'s fields."""
     s = _field_defaults(Scene)
     p.add_argument("kind", choices=KINDS)
     p.add_argument("--mode", choices=MODES, default=s["mode"])
+    p.add_argument("--deformation", choices=DEFORMATIONS, default=s["deformation"],
+                   help="pure shear (default: the other axis keeps the area) or uniaxial (the "
+                   "walls across the other axis held)")
     add(p, "n", s["n_x"], help="particles per row (default %(default)s)")
-    p.add_argument("--ny", type=int, default=s["n_y"], help="rows (default: a square box)")
     add(p, "d", s["d"])
     add(p, "rock", TEST_DEFAULTS["rock"], help="rock whose E and Tu give Kn and Xb "
         "(default %(default)s)")
     p.add_argument("--bond", type=float, nargs=2, metavar=("Kn", "Xb"),
                    help="central-spring parameters directly (Ks = mu_p = 0)")
-    p.add_argument("--steps", type=int, default=s["n_steps"],
-                   help="strain steps (default %(default)s)")
-    p.add_argument("--strain-step", type=float, default=s["strain_step"],
-                   help="strain (or grain growth) per step (default %(default)g)")
-    p.add_argument("--ftol", type=float, default=s["ftol"],
-                   help="relaxation tolerance, fraction of Kn Xb (default %(default)g)")
+    for name, (flag, text) in SCENE_NUMBERS.items():
+        p.add_argument(flag, type=type(s[name]), default=s[name], help=text)
     add(p, "crossings", s["crossings"],
         help="dynamic: P-wave crossings of the box over the whole loading (default %(default)g)")
-    p.add_argument("--deformation", choices=DEFORMATIONS, default=s["deformation"],
-                   help="pure shear (default: the other axis keeps the area) or uniaxial (the "
-                   "walls across the other axis held)")
-    p.add_argument("--dt-fraction", type=float, default=s["dt_fraction"],
-                   help="dynamic: time step as a fraction of the critical one (default "
-                   "%(default)s, at most 0.5)")
     add(p, "damping", s["damping"], help="dynamic: factor on the papers' damping "
         "sqrt(8 m Kn)/N (default %(default)s)")
-    p.add_argument("--layer-thickness", type=float, default=s["layer_thickness"],
-                   help="layer thickness, fraction of the box height (default %(default)s)")
-    p.add_argument("--contrast", type=float, default=s["layer_contrast"],
-                   help="layer stiffness / matrix stiffness (default %(default)s)")
     add(p, "grains", s["n_grains"], help="Voronoi grains (default %(default)s)")
     add(p, "stiffness_sd", s["stiffness_sd"])
     add(p, "strength", [s["strength_min"], s["strength_max"]])
@@ -251,12 +257,6 @@ def scene_options(p: argparse.ArgumentParser) -> None:
         help="strength factor across grain boundaries (default 0.5; 1 for the layer's "
         "interfaces)")
     add(p, "grain_seed", s["seed"])
-    p.add_argument("--expanding", type=int, default=s["n_expanding"],
-                   help="growing grains (default %(default)s)")
-    p.add_argument("--output-every", type=int, default=s["output_every"],
-                   help="strain steps between lines of scene.dat (dynamic; default %(default)s)")
-    p.add_argument("--bond-dumps", type=int, default=s["bond_dumps"],
-                   help="dump the bond records every this many strain steps (0: only at the end)")
     add(p, "atom_style", None, help="atomic (equal particles, per-type mass; default) or "
         "sphere (default and required for expanding, whose grains change their diameters)")
     p.add_argument("--run", action="store_true", help="run it, measure and plot")

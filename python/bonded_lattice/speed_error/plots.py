@@ -35,6 +35,13 @@ def _save(fig, path: Path, title: str | None = None) -> None:
     _plt().close(fig)
 
 
+def _axes_text(ax, title: str, fontsize: float, xlabel: str, ylabel: str) -> None:
+    """An axes' title (at ``fontsize``) and axis labels."""
+    ax.set_title(title, fontsize=fontsize)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+
+
 def plot_contact(res: dict, path: Path) -> None:
     """Part 1: error against dt of the single-contact tests, and the stability of the
     contact spring (bonded T1 against Verlet's amplitude; T1's exit speed error)."""
@@ -147,9 +154,7 @@ def plot_pareto(lat: dict, path: Path, floor: float = 1e-5) -> None:
         pe = abs(lat["paper_err"][q])
         ax.axhspan(max(pe - TOLERANCE[q], floor), pe + TOLERANCE[q], color="r", alpha=0.07)
         ref = "formula" if q in ("E", "nu") else "papers' schedule (its own point: 0)"
-        ax.set_title(f"{q}: |error| against the {ref}", fontsize=9.5)
-        ax.set_xlabel("time steps")
-        ax.set_ylabel("|error|")
+        _axes_text(ax, f"{q}: |error| against the {ref}", 9.5, "time steps", "|error|")
     axes[0, 0].legend(fontsize=6.5)
     _save(fig, path, "error against cost: all runs, Pareto front, the papers' schedule")
 
@@ -179,10 +184,8 @@ def plot_stepwise(lat: dict, path: Path) -> None:
             ax.semilogx([p["steps"]], [100 * p["errors"].get(q, 0.0)], "r*", ms=13,
                         label="papers' schedule")
         ref = "formula" if q in ("E", "nu") else "papers' schedule"
-        ax.set_title(f"{q}: error against the {ref} (labels: step size x the papers')",
-                     fontsize=9)
-        ax.set_xlabel("time steps")
-        ax.set_ylabel("error (%)")
+        _axes_text(ax, f"{q}: error against the {ref} (labels: step size x the papers')", 9,
+                   "time steps", "error (%)")
     axes[0, 0].legend(fontsize=7)
     _save(fig, path, "the papers' stepwise schedule: relaxation steps and step size")
 

@@ -7,14 +7,15 @@ from .fitting import within
 from .settings import DEFAULT, QUANTITIES, TEST_OF, TOLERANCE, Case, Settings
 from .text import pct as _pct
 
-def recommendation_section(s: Settings, lat: dict, V: dict, by_name: dict[str, dict]) -> list[str]:
-    """Part 3: the candidates, the transfer check and :func:`recommendation_text`."""
-    L: list[str] = []
+def recommendation_section(L: list[str], s: Settings, lat: dict, V: dict,
+                           by_name: dict[str, dict]) -> None:
+    """Part 3 (appended to ``L``): the candidates, the transfer check and
+    :func:`recommendation_text`."""
     add = L.append
     # ---------------- part 3 ----------------
     add("## 3. Recommended defaults for the deck generators")
     add("")
-    add("Rule (`recommend` in the script): a damping qualifies from the smallest number of "
+    add("Rule (`recommend` of `bonded_lattice.speed_error`): a damping qualifies from the smallest number of "
         "crossings at which E, nu, Tu and Cu are all at the papers' accuracy **and stay there "
         "for every slower setting of the grid** (a lucky fast point next to a failing slower "
         "one does not count); candidates are ranked by crossings (time steps are proportional "
@@ -56,7 +57,6 @@ def recommendation_section(s: Settings, lat: dict, V: dict, by_name: dict[str, d
         add("")
     add(recommendation_text(lat, s, V, by_name))
     add("")
-    return L
 
 
 def _default_damping_note(grid: dict, paper_err: dict, c: float, f: float) -> str:

@@ -56,10 +56,11 @@ def write_doc(doc: Path, cmd: str, s: Settings, quick: bool, contact: dict, lat:
 
     V = verdict(lat)
     by_name = {r["name"]: r for r in lat["results"]}
-    L = (overview_section(cmd, quick, contact, lat, V, elapsed, root, rel, names)
-         + lattice_section(s, quick, lat, by_name, rel, names)
-         + fronts_section(s, lat, V, by_name, rel, names)
-         + recommendation_section(s, lat, V, by_name))
+    L: list[str] = []
+    overview_section(L, cmd, quick, contact, lat, V, elapsed, root, rel, names)
+    lattice_section(L, s, quick, lat, by_name, rel, names)
+    fronts_section(L, s, lat, V, by_name, rel, names)
+    recommendation_section(L, s, lat, V, by_name)
     add = L.append
     add("## Reproduce")
     add("")
@@ -75,11 +76,11 @@ def write_doc(doc: Path, cmd: str, s: Settings, quick: bool, contact: dict, lat:
     doc.write_text("\n".join(L) + "\n")
 
 
-def overview_section(cmd: str, quick: bool, contact: dict, lat: dict, V: dict, elapsed: float,
-                     root: Path, rel: str, names: dict[str, str]) -> list[str]:
-    """The title, the provenance, the summary and part 1 (the single-contact tests)."""
+def overview_section(L: list[str], cmd: str, quick: bool, contact: dict, lat: dict, V: dict,
+                     elapsed: float, root: Path, rel: str, names: dict[str, str]) -> None:
+    """The title, the provenance, the summary and part 1 (the single-contact tests),
+    appended to ``L``."""
     st = contact["stability"]
-    L: list[str] = []
     add = L.append
     add = L.append
     add("# Speed against error" + (" (quick mode: small blocks, not the study)" if quick else ""))
@@ -224,4 +225,3 @@ def overview_section(cmd: str, quick: bool, contact: dict, lat: dict, V: dict, e
     add("")
     add(f"![single-contact convergence and stability]({rel}/{names['single_contact']})")
     add("")
-    return L

@@ -9,12 +9,11 @@ from .settings import LEVELS, QUANTITIES, TEST_OF, TOLERANCE, Case, Settings
 from .text import cost as _cost
 from .text import pct as _pct
 
-def fronts_section(s: Settings, lat: dict, V: dict, by_name: dict[str, dict], rel: str,
-                   names: dict[str, str]) -> list[str]:
-    """The Pareto fronts, the error levels, the 10x verdict (``V``: :func:`~.report.verdict`)
-    and the lattice's stability scan."""
+def fronts_section(L: list[str], s: Settings, lat: dict, V: dict, by_name: dict[str, dict],
+                   rel: str, names: dict[str, str]) -> None:
+    """Appended to ``L``: the Pareto fronts, the error levels, the 10x verdict (``V``:
+    :func:`~.report.verdict`) and the lattice's stability scan."""
     res, pe, grid, ls = lat["results"], lat["paper"], lat["grid"], lat["stability"]
-    L: list[str] = []
     add = L.append
     # Pareto
     add("### Pareto fronts: error against time steps")
@@ -143,4 +142,3 @@ def fronts_section(s: Settings, lat: dict, V: dict, by_name: dict[str, dict], re
     add("")
     add(f"![lattice time step]({rel}/{names['lattice_dt']})")
     add("")
-    return L

@@ -9,11 +9,10 @@ from .settings import DEFAULT, QUANTITIES, TEST_OF, TOLERANCE, Case, Settings
 from .text import cost as _cost
 from .text import pct as _pct
 
-def lattice_section(s: Settings, quick: bool, lat: dict, by_name: dict[str, dict], rel: str,
-                    names: dict[str, str]) -> list[str]:
-    """Part 2 up to the Pareto fronts (``by_name``: the runs by :attr:`Case.name`)."""
+def lattice_section(L: list[str], s: Settings, quick: bool, lat: dict,
+                    by_name: dict[str, dict], rel: str, names: dict[str, str]) -> None:
+    """Appended to ``L``: part 2 up to the Pareto fronts (``by_name``: the runs by :attr:`Case.name`)."""
     res = lat["results"]
-    L: list[str] = []
     add = L.append
     # ---------------- part 2 ----------------
     add("## 2. The 2D quartz lattice: error against cost")
@@ -192,7 +191,6 @@ def lattice_section(s: Settings, quick: bool, lat: dict, by_name: dict[str, dict
                    f"without the halt, so its {r['steps']} time steps are the planned maximum")
             add(f"- {Case(**r['case']).label()} ({r['case']['test']}, N = {r['case']['n']}): {why}.")
         add("")
-    return L
 
 
 def viscous_text(res: list[dict], s: Settings) -> str:
