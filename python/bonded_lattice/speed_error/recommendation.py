@@ -15,9 +15,9 @@ def recommendation_section(L: list[str], s: Settings, lat: dict, V: dict,
     # ---------------- part 3 ----------------
     add("## 3. Recommended defaults for the deck generators")
     add("")
-    add("Rule (`recommend` of `bonded_lattice.speed_error`): a damping qualifies from the smallest number of "
-        "crossings at which E, nu, Tu and Cu are all at the papers' accuracy **and stay there "
-        "for every slower setting of the grid** (a lucky fast point next to a failing slower "
+    add("Rule (`recommend` of `bonded_lattice.speed_error`): a damping qualifies from the "
+        "smallest number of crossings at which E, nu, Tu and Cu are all at the papers' "
+        "accuracy **and stay there for every slower setting of the grid** (a lucky fast point next to a failing slower "
         "one does not count); candidates are ranked by crossings (time steps are proportional "
         "to them), then by the largest share of the tolerance used.  The first candidate that "
         f"also passes the transfer check on the N = {s.n_check} strength block is recommended.")

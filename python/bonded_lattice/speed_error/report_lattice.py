@@ -11,7 +11,8 @@ from .text import pct as _pct
 
 def lattice_section(L: list[str], s: Settings, quick: bool, lat: dict,
                     by_name: dict[str, dict], rel: str, names: dict[str, str]) -> None:
-    """Appended to ``L``: part 2 up to the Pareto fronts (``by_name``: the runs by :attr:`Case.name`)."""
+    """Appended to ``L``: part 2 up to the Pareto fronts (``by_name``: the runs by
+    :attr:`Case.name`)."""
     res = lat["results"]
     add = L.append
     # ---------------- part 2 ----------------
