@@ -17,21 +17,18 @@ runs (their summary.json) and only rewrites the table and figures.
 from __future__ import annotations
 
 import argparse
-import json
 from pathlib import Path
 
 import numpy as np
 
 from bonded_lattice.plotting import angle_histogram_png, scene_stress_png
-from bonded_lattice.scenes import (Scene, bond_angles, broken_bonds, build_model,
-                                   read_scene_dat, run_scene)
+from bonded_lattice.scene_study import SceneStudy
+from bonded_lattice.scenes import Scene, bond_angles, broken_bonds, build_model, read_scene_dat
 
 
 def run(scene: Scene, out: Path, reuse: bool, np_: int) -> dict:
-    path = out / "summary.json"
-    if reuse and path.exists():
-        return json.loads(path.read_text())
-    return run_scene(scene, out, np_=np_)
+    """The scene's summary: its stored summary.json with ``reuse``, else a new run."""
+    return SceneStudy(scene, out, np_=np_).run(reuse=reuse)
 
 
 def curve_error(qs: dict, dyn: dict) -> float:

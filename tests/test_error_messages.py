@@ -189,7 +189,7 @@ def bad_scene():
 
 
 def test_failed_scene_run_raises_lammps_error(tmp_path):
-    from bonded_lattice.scenes import run_scene
+    from bonded_lattice.scene_study import run_scene
 
     with pytest.raises(RuntimeError) as info:
         run_scene(bad_scene(), tmp_path, pictures=False)

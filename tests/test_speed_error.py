@@ -1,4 +1,4 @@
-"""The pure functions of bench/speed_error.py (no simulation; well under a second).
+"""The pure functions of bonded_lattice.speed_error (no simulation; well under a second).
 
 Pareto front, convergence-order fit, Verlet's discrete oscillator and its growth factor,
 the bisection of a stability limit, the papers'-accuracy test and the recommendation rule,
@@ -7,24 +7,17 @@ each on synthetic data with a known answer.
 
 from __future__ import annotations
 
-import importlib.util
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-PATH = Path(__file__).resolve().parent.parent / "bench" / "speed_error.py"
+from bonded_lattice import speed_error
 
 
 @pytest.fixture(scope="module")
 def se():
-    spec = importlib.util.spec_from_file_location("speed_error", PATH)
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = mod      # dataclasses look their module up while defining
-    spec.loader.exec_module(mod)
-    return mod
+    return speed_error
 
 
 def test_pareto_front(se):
@@ -164,7 +157,8 @@ def test_case_names_are_distinct(se):
     Case = se.Case
     names = {c.name for c in se.lattice_cases(se.FULL)}
     assert len(names) == len(se.lattice_cases(se.FULL))
-    assert Case("paper", "tension", 15, schedule="paper").name == "tension_n15_paper_r400_s1"
+    assert Case("paper", "tension", 15,
+                schedule="stepwise").name == "tension_n15_stepwise_r400_s1"
     assert Case("dt", "elastic", 30, dt_fraction=0.2).name == "elastic_n30_c100_f1_dt0.2"
     # exactly one papers' reference per test
     fams = [(c.family, c.test) for c in se.lattice_cases(se.FULL) if c.family == "paper"]

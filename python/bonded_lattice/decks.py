@@ -56,9 +56,9 @@ from .deck import (ATOM_DUMP_COLUMNS, BOND_COUNTS, PairStyle, atom_bond_counts, 
 from .deck.pair import SHEAR_FRAMES
 from .grains import GrainPairOptions
 from .lattice import check_atom_style
+from .schedules import SCHEDULES  # the loading schedules' one vocabulary
 
 TESTS = ("tension", "compression", "elastic", "confined", "periodic")
-SCHEDULES = ("constant", "stepwise")
 
 
 @dataclass(frozen=True)

@@ -1,13 +1,13 @@
 """One complete numerical rock test: lattice -> data file and deck -> run -> measure -> plots.
 
-This is what ``bonded-lattice run`` does; it writes into one output folder:
+This is what ``bonded-lattice run`` does (:class:`RockTest`, a
+:class:`bonded_lattice.study.Study`); it writes into one output folder:
 ``data.lattice``, ``in.<test>``, ``log.lammps``, dumps, ``stress_strain.png``,
 ``broken_bonds.png`` (strength tests) and ``summary.json``.
 """
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -30,7 +30,9 @@ from .lattice import Lattice, close_packed_block_3d, hex_block_2d, write_data
 from .periodic import paper_cell, periodic_cell
 from .plotting import broken_bond_map_png, energy_png, stress_strain_png
 from .rocks import Rock
-from .runner import RunResult, run_deck
+from .runner import RunResult
+from .schedules import DEFAULT_DT_FRACTION, DEFAULT_LOADING, PAPER_SCHEDULES, schedule_name
+from .study import Study
 
 
 @dataclass(frozen=True)
@@ -81,32 +83,18 @@ def test_lattice(dim: int, n: int, d: float, test: str, orientation: float = 0.0
     return periodic_cell(dim, d, paper_cell(dim, n)).lattice
 
 
-# The papers' stepwise schedules for 1 mm particles (Liu 2013 sections 5.2-5.3, Liu 2017
-# section 5.1; docs/theory.md, "The papers' loading schedules"): displacement of
-# each platen per loading step (m) and time steps of relaxation after each; time
-# step as a fraction of sqrt(m/Kn) (2e-8 s in 2D and 1e-8 s in 3D for quartz).
-PAPER_SCHEDULES = {
-    2: {"relax_steps": 400, "dt_fraction": 0.10715,
-        "step_size": {"elastic": 6.0e-10, "tension": 1.9e-10, "compression": 1.9e-9,
-                      "confined": 1.9e-9}},
-    3: {"relax_steps": 100, "dt_fraction": 0.04997,
-        "step_size": {"elastic": 1.7e-10, "tension": 1.7e-10, "compression": 1.7e-9,
-                      "confined": 1.7e-9}},
-}
 RUN_MARGIN = {"elastic": 1.5, "tension": 2.5, "compression": 2.5, "confined": 2.5,
               "periodic": 1.5}
 # periodic test: time steps to the failure strain.  The cell deforms homogeneously
 # (no wave has to cross it), so the rate is limited only by the lateral barostat's
 # lag and by how finely the peak is resolved (1/PERIODIC_STEPS)
 PERIODIC_STEPS = 10000
-DEFAULT_DT_FRACTION = 0.1      # of sqrt(m/Kn), the constant schedule's time step
 # thermo rows per run: the peak stress is sampled on them, so a strength run with
 # margin 2.5 resolves its peak to about 2.5/THERMO_LINES (0.17%), at a cost of a few
 # per cent (each row reduces over all particles); the stepwise schedule prints at
 # the end of relaxation periods only
 THERMO_LINES = 1500
 THERMO_LINES_STEPWISE = 4000
-SCHEDULE_NAMES = ("constant", "paper")
 
 
 def confined_strength(rock: Rock, confining: float) -> float:
@@ -124,15 +112,6 @@ def target_strain(rock: Rock, test: str, confining: float = 0.0,
             "confined": confined_strength(rock, confining) / rock.E}[test]
 
 
-# the constant schedule's defaults (wave crossings during loading, damping as a multiple of
-# the papers' eta), chosen from the speed-versus-error front of docs/speed_error.md: in 2D
-# 50 crossings with a quarter of the papers' damping is the cheapest setting whose E, nu,
-# Tu and Cu stay within 0.1% / 0.5% of the papers' schedule for every slower loading (it
-# takes 76x (E, nu) to 690x (Tu) fewer time steps); 3D was not studied and keeps 100 and 1
-DEFAULT_LOADING = {2: {"crossings": 50.0, "damping": 0.25},
-                   3: {"crossings": 100.0, "damping": 1.0}}
-
-
 def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
               crossings: float | None = None, speed: float | None = None,
               confining: float = 0.0, schedule: str = "constant",
@@ -148,7 +127,8 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
       1 mm quartz in 2D); platens move at a speed slow enough that loading to
       failure takes ``crossings`` elastic wave crossings of the block, unless
       ``speed`` is given;
-    - schedule ``paper``: the papers' time step, platen displacement per loading
+    - schedule ``stepwise`` (alias ``paper``, :mod:`bonded_lattice.schedules`): the
+      papers' time step, platen displacement per loading
       step (scaled with d / 1 mm) and relaxation steps after each
       (PAPER_SCHEDULES), unless ``step_size`` or ``relax_steps`` are given;
     - dt_scale: multiplies the time step of either schedule (convergence studies);
@@ -157,9 +137,7 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
       decks stop by themselves once the block has failed (fix halt), and a
       single unit softens after its bonds open (3D: fails at 1.75 Cu/E).
     """
-    if schedule not in SCHEDULE_NAMES:
-        raise ValueError(f"schedule = {schedule!r} is not known: use one of "
-                         f"{', '.join(SCHEDULE_NAMES)}")
+    schedule = schedule_name(schedule)
     defaults = DEFAULT_LOADING.get(lattice.dim, DEFAULT_LOADING[3])
     crossings = defaults["crossings"] if crossings is None else crossings
     damping = defaults["damping"] if damping is None else damping
@@ -198,7 +176,7 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
                        speed=0.5 * strain_rate * height, steps=steps, area=area,
                        thermo_every=max(1, steps // THERMO_LINES), strain_rate=strain_rate,
                        modulus=2.0 * rock.E)
-    if schedule == "paper":
+    if schedule == "stepwise":
         paper = PAPER_SCHEDULES[dim]
         dt = dt_scale * paper["dt_fraction"] * math.sqrt(mass / bond.Kn)
         step_size = step_size if step_size is not None else paper["step_size"][test] * d / 1.0e-3
@@ -267,11 +245,132 @@ def lattice_n_across(lattice: Lattice) -> int:
     return int(round(extent / lattice.d)) + 1
 
 
+class RockTest(Study):
+    """One rock-mechanics test of a block, end to end (what ``bonded-lattice run`` does).
+
+    plan: the test's lattice (:func:`test_lattice`) and :func:`plan_test`; write:
+    ``data.lattice`` and ``in.<test>``; execute: LAMMPS on ``np_`` ranks; measure: E, nu,
+    the strength (:func:`bonded_lattice.analysis.measure`) against the rock's values, and
+    with a trajectory the same E and nu from it; plot: ``stress_strain.png``,
+    ``energy.png`` (with ``energy``), ``broken_bonds.png`` (strength tests); summary:
+    ``summary.json``.  The arguments are those of :func:`run_test`.
+    """
+
+    def __init__(self, rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int = 2,
+                 d: float = 1.0e-3, progress: bool = True, bond: BondParameters | None = None,
+                 dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
+                 shear_frame: str = "fixed", atom_style: str = "atomic",
+                 pictures: bool = True, **plan_options) -> None:
+        super().__init__(out, np_=np_, progress=progress, pictures=pictures)
+        self.rock, self.dim, self.test, self.n, self.d = rock, dim, test, n, d
+        self.bond = bond
+        self.dump_every = dump_every
+        self.orientation = orientation
+        self.energy = energy
+        self.shear_frame = shear_frame
+        self.atom_style = atom_style
+        self.plan_options = plan_options
+        self.confining = plan_options.get("confining", 0.0)
+        # the periodic test is a tension test without platens
+        self.kind = "tension" if test == "periodic" else test
+        self.strength_name = {"tension": "Tu", "compression": "Cu",
+                              "confined": "sigma1"}.get(self.kind)
+
+    def _plan(self) -> None:
+        if self.bond is None:
+            r = self.rock
+            self.bond = rock_to_bond(r.E, r.nu, r.Tu, r.Cu, r.mu_i, self.d, self.dim)
+        self.lattice = test_lattice(self.dim, self.n, self.d, self.test, self.orientation)
+        self.plan = plan_test(self.rock, self.bond, self.lattice, self.test, **self.plan_options)
+
+    def _write(self) -> Path:
+        plan = self.plan
+        write_data(self.lattice, self.out / "data.lattice", plan.mass, atom_style=self.atom_style)
+        if self.dump_every > 0:   # frames on thermo rows, so each frame has its stress
+            self.dump_every = plan.thermo_every * max(1, round(self.dump_every /
+                                                               plan.thermo_every))
+        deck = self.out / f"in.{self.test}"
+        self.spec = deck_spec(plan, self.test, self.dim, self.bond, self.confining,
+                              self.dump_every, has_mid_height(self.lattice), self.energy,
+                              self.shear_frame, atom_style=self.atom_style)
+        write_deck(self.spec, deck)
+        return deck
+
+    def _total_steps(self) -> int | None:
+        return self.plan.steps
+
+    def _measure(self, result: RunResult) -> None:
+        rock, test, dim, out = self.rock, self.test, self.dim, self.out
+        self.thermo = thermo = result.last_thermo()
+        self.got = got = measure(thermo, self.kind, dim)
+        strength_name = self.strength_name
+        if test == "confined":
+            # the side walls restrain the lateral strain: E and nu are not measured here
+            target = {"sigma1": confined_strength(rock, self.confining)}
+            measured = {"sigma1": got.strength}
+        else:
+            target = {"E": rock.E, "nu": rock.nu}
+            measured = {"E": got.E, "nu": got.nu}
+            if strength_name:
+                target[strength_name] = getattr(rock, strength_name)
+                measured[strength_name] = got.strength
+            if test == "compression" and got.c_open is not None and rock.nu > 0:
+                target["C_open"] = c_open(rock.Tu, rock.nu, dim)
+                measured["C_open"] = got.c_open
+        self.target, self.measured = target, measured
+        self.errors = {k: measured[k] / target[k] - 1.0 for k in target}
+        self.from_dump = None
+        if self.dump_every > 0 and test != "confined":
+            # the same E and nu from the trajectory, read with MDAnalysis (a cross-check)
+            E_dump, nu_dump = elastic_from_dump(out / "dump.lammpstrj", thermo, test, dim)
+            self.from_dump = {"E": E_dump, "nu": nu_dump}
+
+    def _plot(self) -> None:
+        out, thermo, name = self.out, self.thermo, self.strength_name
+        title = f"{self.rock.name}, {self.dim}D, {self.test}, {self.lattice.n} particles"
+        stress_strain_png(out / "stress_strain.png", thermo["v_strain"], thermo["v_stress"],
+                          self.kind, self.rock.E, self.target.get(name) if name else None, title)
+        if self.energy:
+            energy_png(out / "energy.png", thermo, title)
+        if name:
+            broken_bond_map_png(out / "broken_bonds.png", out / "dump.initial",
+                                out / "dump.final", self.dim, title)
+
+    def _summary(self) -> dict:
+        got, plan, result = self.got, self.plan, self.result
+        assert result is not None and self.bond is not None
+        return {
+            "package": f"bonded-lattice {__version__}",
+            "rock": asdict(self.rock),
+            "dim": self.dim,
+            "test": self.test,
+            "particles": self.lattice.n,
+            "n": self.n,
+            "confining_Pa": self.confining,
+            "orientation_deg": self.orientation,
+            "ranks": self.np_,
+            "plan": asdict(plan),
+            "bond": asdict(self.bond),
+            "target": self.target,
+            "measured": self.measured,
+            "relative_error": self.errors,
+            "broken_bonds": {"tension": got.broken_tension, "shear": got.broken_shear},
+            "first_break_stress": got.first_break,
+            "nu_all_particles": got.nu_all,
+            "measured_from_dump": self.from_dump,
+            "energy": energy_summary(self.thermo, self.out / "breaking.dat", plan.dt)
+            if self.energy else None,
+            "lateral_width_m": self.lattice.width,
+            "wall_time_s": result.wall_time,
+        }
+
+
 def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int = 2,
              d: float = 1.0e-3, progress: bool = True, bond: BondParameters | None = None,
              dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
              shear_frame: str = "fixed", atom_style: str = "atomic", **plan_options) -> dict:
-    """Run one test end to end and return the summary (also written to summary.json).
+    """Run one test end to end (:class:`RockTest`) and return the summary (also written to
+    summary.json).
 
     shear_frame: ``fixed`` (the papers') or ``corotational`` (shear measured relative to
         each particle's local rigid rotation; pair_style lattice/bond keyword shear_frame).
@@ -283,82 +382,9 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
     plan_options: passed to :func:`plan_test` (crossings, speed, confining,
         schedule, damping, elastic_strain, step_size, relax_steps).
     """
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    confining = plan_options.get("confining", 0.0)
-    if bond is None:
-        bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, d, dim)
-    lattice = test_lattice(dim, n, d, test, orientation)
-    plan = plan_test(rock, bond, lattice, test, **plan_options)
-    write_data(lattice, out / "data.lattice", plan.mass, atom_style=atom_style)
-    if dump_every > 0:   # frames on thermo rows, so each frame has its stress
-        dump_every = plan.thermo_every * max(1, round(dump_every / plan.thermo_every))
-    deck = out / f"in.{test}"
-    write_deck(deck_spec(plan, test, dim, bond, confining, dump_every, has_mid_height(lattice),
-                         energy, shear_frame, atom_style=atom_style), deck)
-    result: RunResult = run_deck(deck, out, np_=np_, total_steps=plan.steps, progress=progress)
-    if result.returncode != 0:
-        raise RuntimeError(f"LAMMPS failed in {out}: {result.error}")
-    thermo = result.last_thermo()
-    # the periodic test is a tension test without platens
-    kind = "tension" if test == "periodic" else test
-    got = measure(thermo, kind, dim)
-
-    strength_name = {"tension": "Tu", "compression": "Cu", "confined": "sigma1"}.get(kind)
-    if test == "confined":
-        # the side walls restrain the lateral strain: E and nu are not measured here
-        target = {"sigma1": confined_strength(rock, confining)}
-        measured = {"sigma1": got.strength}
-    else:
-        target = {"E": rock.E, "nu": rock.nu}
-        measured = {"E": got.E, "nu": got.nu}
-        if strength_name:
-            target[strength_name] = getattr(rock, strength_name)
-            measured[strength_name] = got.strength
-        if test == "compression" and got.c_open is not None and rock.nu > 0:
-            target["C_open"] = c_open(rock.Tu, rock.nu, dim)
-            measured["C_open"] = got.c_open
-    errors = {k: measured[k] / target[k] - 1.0 for k in target}
-    from_dump = None
-    if dump_every > 0 and test != "confined":
-        # the same E and nu from the trajectory, read with MDAnalysis (a cross-check)
-        E_dump, nu_dump = elastic_from_dump(out / "dump.lammpstrj", thermo, test, dim)
-        from_dump = {"E": E_dump, "nu": nu_dump}
-
-    title = f"{rock.name}, {dim}D, {test}, {lattice.n} particles"
-    stress_strain_png(out / "stress_strain.png", thermo["v_strain"], thermo["v_stress"], kind,
-                      rock.E, target.get(strength_name) if strength_name else None, title)
-    if energy:
-        energy_png(out / "energy.png", thermo, title)
-    if strength_name:
-        broken_bond_map_png(out / "broken_bonds.png", out / "dump.initial", out / "dump.final",
-                            dim, title)
-
-    summary = {
-        "package": f"bonded-lattice {__version__}",
-        "rock": asdict(rock),
-        "dim": dim,
-        "test": test,
-        "particles": lattice.n,
-        "n": n,
-        "confining_Pa": confining,
-        "orientation_deg": orientation,
-        "ranks": np_,
-        "plan": asdict(plan),
-        "bond": asdict(bond),
-        "target": target,
-        "measured": measured,
-        "relative_error": errors,
-        "broken_bonds": {"tension": got.broken_tension, "shear": got.broken_shear},
-        "first_break_stress": got.first_break,
-        "nu_all_particles": got.nu_all,
-        "measured_from_dump": from_dump,
-        "energy": energy_summary(thermo, out / "breaking.dat", plan.dt) if energy else None,
-        "lateral_width_m": lattice.width,
-        "wall_time_s": result.wall_time,
-    }
-    (out / "summary.json").write_text(json.dumps(summary, indent=2))
-    return summary
+    return RockTest(rock, dim, test, n, out, np_=np_, d=d, progress=progress, bond=bond,
+                    dump_every=dump_every, orientation=orientation, energy=energy,
+                    shear_frame=shear_frame, atom_style=atom_style, **plan_options).run()
 
 
 ENERGY_NAMES = ("elastic", "kinetic", "gravitational", "viscous_heat", "breaking_heat_normal",

@@ -42,15 +42,12 @@ The scenes are made in layers, one module each: the definition
 particles and grains (:mod:`bonded_lattice.scene_model`: :func:`build_model`), the deck and
 data file (:mod:`bonded_lattice.scene_deck`: :func:`write_scene`, from the sections of
 :mod:`bonded_lattice.deck`) and what a finished run shows
-(:mod:`bonded_lattice.scene_analysis`); this module runs, measures and plots a scene and
-keeps every name importable from here.
+(:mod:`bonded_lattice.scene_analysis`); :mod:`bonded_lattice.scene_study` runs, measures and
+plots a scene (:class:`~bonded_lattice.scene_study.SceneStudy`).  This module keeps every name
+of the first four importable from here.
 """
 
 from __future__ import annotations
-
-from pathlib import Path
-
-import numpy as np
 
 from .io.dump import read_bond_dump
 from .scene_analysis import bond_angles, break_steps, broken_bonds, crack_normal_stats
@@ -66,91 +63,7 @@ __all__ = ["ATOMIC_SAVING_PER_PARTICLE", "BYTES_PER_PARTICLE", "BYTES_PER_RANK",
            "DEFORMATIONS", "KINDS", "MODES", "ROW", "SCENE_COLUMNS", "SQRT3", "TITLES",
            "Scene", "SceneModel", "bond_angles", "box_lattice", "break_steps", "broken_bonds",
            "build_model", "central_spring_bond", "crack_normal_stats", "deck_text",
-           "expanding_grains", "expected_memory", "grain_model", "picture_scene",
-           "plane_moduli", "read_bond_dump", "read_scene_dat", "run_scene", "scene_title",
-           "summarize", "wall_masks", "write_scene"]
+           "expanding_grains", "expected_memory", "grain_model",
+           "plane_moduli", "read_bond_dump", "read_scene_dat", "scene_title", "wall_masks",
+           "write_scene"]
 
-
-# ---------------------------------------------------------------- run, measure, plot
-
-def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray) -> dict:
-    """Measured results of a finished scene run (scene.dat and bonds.final.txt)."""
-    run_dir = Path(run_dir)
-    dat = read_scene_dat(run_dir / "scene.dat")
-    final = broken_bonds(run_dir / "bonds.final.txt")
-    angles = bond_angles(final[:, :2], positions)
-    # the peak of the stress along the loading: sigma_xx in tension (extension), in
-    # compression (layer compression), the mean wall stress for growing grains
-    if scene.kind == "expanding":
-        load = -0.5 * (dat["sxx"] + dat["syy"])
-    elif scene.kind == "layer-compression":
-        load = -dat["sxx"]
-    else:
-        load = dat["sxx"]
-    k_peak = int(np.argmax(load))
-    return {
-        "kind": scene.kind, "mode": scene.mode, "particles": scene.n,
-        "strain": float(dat["exx"][-1]) if scene.kind != "expanding" else float(dat["growth"][-1]),
-        "broken": int(len(final)), "broken_tension": int((final[:, 2] == 1).sum()),
-        "broken_shear": int((final[:, 2] == 2).sum()),
-        "peak_stress": float(load[k_peak]),
-        "peak_at_strain": float(dat["growth" if scene.kind == "expanding" else "exx"][k_peak]),
-        "steps": int(dat["step"][-1]),
-        "orientation": crack_normal_stats(angles),
-    }
-
-
-def run_scene(scene: Scene, out: str | Path, np_: int = 1, pictures: bool = True,
-              progress: bool = False) -> dict:
-    """Write, run (``lmp`` on np_ ranks), measure and plot a scene; returns the summary.
-
-    Writes ``summary.json``, ``broken_bonds.png`` (by mode), ``broken_steps.png``
-    (by the strain step of the break, if the deck wrote bond dumps) and
-    ``stress_strain.png`` into ``out``.
-    """
-    import json
-
-    from .runner import run_deck
-
-    info = write_scene(scene, out)
-    result = run_deck(info["deck"], out, np_=np_, progress=progress)
-    if result.returncode != 0:
-        raise RuntimeError(f"the scene run failed in {out}: {result.error}")
-    model = build_model(scene)
-    summary = summarize(scene, out, model.lattice.positions)
-    summary["wall_time_s"] = round(result.wall_time, 2)
-    summary["ranks"] = np_
-    summary["expanding"] = model.expanding
-    if pictures:
-        picture_scene(scene, out, model)
-    Path(out, "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
-    return summary
-
-
-def picture_scene(scene: Scene, out: str | Path, model: SceneModel | None = None,
-                  prefix: str = "") -> None:
-    """broken_bonds.png, broken_steps.png and stress_strain.png of a finished run."""
-    from .plotting import scene_bonds_png, scene_stress_png
-
-    out = Path(out)
-    model = model or build_model(scene)
-    records = read_bond_dump(out / "bonds.final.txt")
-    highlight = np.isin(model.grain, model.expanding) if model.expanding else None
-    title = f"{scene_title(scene)}\n{scene.n} particles, {scene.mode}"
-    scene_bonds_png(out / f"{prefix}broken_bonds.png", model.lattice.positions, model.grain,
-                    records, scene.d, title=title + ": broken bonds by mode",
-                    highlight=highlight)
-    dated = break_steps(out)
-    if dated:
-        per = 1 if scene.mode == "quasistatic" else scene.steps_per_strain_step()
-        dated = {key: (k // per if k >= 0 else scene.n_steps) for key, k in dated.items()}
-        scene_bonds_png(out / f"{prefix}broken_steps.png", model.lattice.positions,
-                        model.grain, records, scene.d, broken_at=dated,
-                        step_label="strain step", title=title + ": broken bonds by step",
-                        highlight=highlight)
-    dat = read_scene_dat(out / "scene.dat")
-    x = dat["growth"] if scene.kind == "expanding" else dat["exx"]
-    label = "grain growth (1e-3)" if scene.kind == "expanding" else "strain e_xx (1e-3)"
-    scene_stress_png(out / f"{prefix}stress_strain.png",
-                     [{"label": scene.mode, "strain": x, "sxx": dat["sxx"], "syy": dat["syy"],
-                       "broken": dat["tension"] + dat["shear"]}], xlabel=label, title=title)

@@ -29,7 +29,7 @@ import numpy as np
 from . import __version__
 from .analysis import coulomb_envelope
 from .calibration import calibrate
-from .experiment import run_test
+from .experiment import RockTest
 from .plotting import broken_bond_map_png, convergence_png, strain_magnitude_png
 from .provenance import git_commit
 from .rocks import Rock, get_rock
@@ -64,18 +64,20 @@ class Validation:
     progress: bool = True
 
     def run(self, name: str, rock: Rock, dim: int, test: str, n: int, **options) -> dict:
-        """One test in ``out/name`` (or its stored summary with ``reuse``)."""
-        folder = self.out / name
-        stored = folder / "summary.json"
-        if self.reuse and stored.exists():
-            return json.loads(stored.read_text())
-        if self.progress:
-            print(f"validate: {name}", flush=True)
+        """One test in ``out/name`` (:class:`~bonded_lattice.experiment.RockTest`), or its
+        stored summary with ``reuse``."""
         # the settings this document was made with (before the 2D defaults moved to
         # 50 crossings and damping 0.25, docs/speed_error.md), so that it stays reproducible
         options.setdefault("crossings", 100.0)
         options.setdefault("damping", 1.0)
-        return run_test(rock, dim, test, n, folder, np_=self.np_, progress=False, **options)
+        study = RockTest(rock, dim, test, n, self.out / name, np_=self.np_, progress=False,
+                         **options)
+        stored = study.stored() if self.reuse else None
+        if stored is not None:
+            return stored
+        if self.progress:
+            print(f"validate: {name}", flush=True)
+        return study.run()
 
     def sizes(self, dim: int) -> list[int]:
         return QUICK_SIZES[dim] + (SLOW_SIZES[dim] if self.slow else [])
@@ -99,7 +101,7 @@ def run_all(v: Validation) -> dict:
         unit = {"elastic": v.run(f"{dim}d/unit_elastic", rock, dim, "elastic", 2,
                                  elastic_strain=1e-6)}
         for test in ("tension", "compression"):
-            unit[test] = v.run(f"{dim}d/unit_{test}", rock, dim, test, 2, schedule="paper")
+            unit[test] = v.run(f"{dim}d/unit_{test}", rock, dim, test, 2, schedule="stepwise")
         res["units"][dim] = unit
         series = []
         for n in v.sizes(dim):
@@ -114,7 +116,7 @@ def run_all(v: Validation) -> dict:
             n = SCHEDULE_SIZE[dim]
             res["schedule"][dim] = {
                 test: {"paper": v.run(f"{dim}d/paper_n{n}_{test}", rock, dim, test, n,
-                                      schedule="paper"),
+                                      schedule="stepwise"),
                        "constant": v.run(f"{dim}d/n{n}_{test}", rock, dim, test, n)}
                 for test in ("tension", "compression")}
         calib_dir = v.out / f"{dim}d/calibration"
@@ -132,7 +134,7 @@ def run_all(v: Validation) -> dict:
     if v.slow:
         res["energy"]["tension, papers' schedule"] = v.run(
             f"3d/energy_paper_n{ENERGY_SIZE}_tension", rock_for(3), 3, "tension", ENERGY_SIZE,
-            energy=True, schedule="paper")
+            energy=True, schedule="stepwise")
     env = ENVELOPE
     rock = rock_for(env["dim"])
     res["envelope"] = [v.run(f"{env['dim']}d/confined_{p / 1e6:g}MPa", rock, env["dim"],

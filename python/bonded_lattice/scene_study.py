@@ -1,0 +1,124 @@
+"""Run, measure and plot a Mike/Elle scene (:mod:`bonded_lattice.scenes`): the scene's
+:class:`bonded_lattice.study.Study`.
+
+:class:`SceneStudy` (what ``bonded-lattice scene --run`` does): plan: the scene's particles,
+grains and stiffness factors (:func:`bonded_lattice.scenes.build_model`); write: the data
+file and the deck (:func:`bonded_lattice.scenes.write_scene`); execute: ``lmp`` on ``np_``
+ranks; measure: :func:`summarize` (``scene.dat`` and ``bonds.final.txt``); plot:
+:func:`picture_scene`; summary: ``summary.json``.  :func:`run_scene` is the one-call form.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .runner import RunResult
+from .scenes import (Scene, SceneModel, bond_angles, break_steps, broken_bonds, build_model,
+                     crack_normal_stats, read_bond_dump, read_scene_dat, scene_title,
+                     write_scene)
+from .study import Study
+
+__all__ = ["SceneStudy", "picture_scene", "run_scene", "summarize"]
+
+
+def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray) -> dict:
+    """Measured results of a finished scene run (scene.dat and bonds.final.txt)."""
+    run_dir = Path(run_dir)
+    dat = read_scene_dat(run_dir / "scene.dat")
+    final = broken_bonds(run_dir / "bonds.final.txt")
+    angles = bond_angles(final[:, :2], positions)
+    # the peak of the stress along the loading: sigma_xx in tension (extension), in
+    # compression (layer compression), the mean wall stress for growing grains
+    if scene.kind == "expanding":
+        load = -0.5 * (dat["sxx"] + dat["syy"])
+    elif scene.kind == "layer-compression":
+        load = -dat["sxx"]
+    else:
+        load = dat["sxx"]
+    k_peak = int(np.argmax(load))
+    return {
+        "kind": scene.kind, "mode": scene.mode, "particles": scene.n,
+        "strain": float(dat["exx"][-1]) if scene.kind != "expanding" else float(dat["growth"][-1]),
+        "broken": int(len(final)), "broken_tension": int((final[:, 2] == 1).sum()),
+        "broken_shear": int((final[:, 2] == 2).sum()),
+        "peak_stress": float(load[k_peak]),
+        "peak_at_strain": float(dat["growth" if scene.kind == "expanding" else "exx"][k_peak]),
+        "steps": int(dat["step"][-1]),
+        "orientation": crack_normal_stats(angles),
+    }
+
+
+class SceneStudy(Study):
+    """One scene, written, run on ``np_`` ranks, measured and (with ``pictures``) drawn.
+
+    Writes ``summary.json``, ``broken_bonds.png`` (by mode), ``broken_steps.png`` (by the
+    strain step of the break, if the deck wrote bond dumps) and ``stress_strain.png``.
+    """
+
+    json_end = "\n"
+
+    def __init__(self, scene: Scene, out: str | Path, np_: int = 1, pictures: bool = True,
+                 progress: bool = False) -> None:
+        super().__init__(out, np_=np_, progress=progress, pictures=pictures)
+        self.scene = scene
+
+    def _plan(self) -> None:
+        self.model = build_model(self.scene)
+
+    def _write(self) -> Path:
+        return Path(write_scene(self.scene, self.out)["deck"])
+
+    def _failure(self, result: RunResult) -> str:
+        return f"the scene run failed in {self.out}: {result.error}"
+
+    def _measure(self, result: RunResult) -> None:
+        self.measured = summarize(self.scene, self.out, self.model.lattice.positions)
+
+    def _plot(self) -> None:
+        picture_scene(self.scene, self.out, self.model)
+
+    def _summary(self) -> dict:
+        assert self.result is not None
+        summary = dict(self.measured)
+        summary["wall_time_s"] = round(self.result.wall_time, 2)
+        summary["ranks"] = self.np_
+        summary["expanding"] = self.model.expanding
+        return summary
+
+
+def run_scene(scene: Scene, out: str | Path, np_: int = 1, pictures: bool = True,
+              progress: bool = False) -> dict:
+    """Write, run (``lmp`` on np_ ranks), measure and plot a scene (:class:`SceneStudy`);
+    returns the summary, also written to ``out/summary.json``."""
+    return SceneStudy(scene, out, np_=np_, pictures=pictures, progress=progress).run()
+
+
+def picture_scene(scene: Scene, out: str | Path, model: SceneModel | None = None,
+                  prefix: str = "") -> None:
+    """broken_bonds.png, broken_steps.png and stress_strain.png of a finished run."""
+    from .plotting import scene_bonds_png, scene_stress_png
+
+    out = Path(out)
+    model = model or build_model(scene)
+    records = read_bond_dump(out / "bonds.final.txt")
+    highlight = np.isin(model.grain, model.expanding) if model.expanding else None
+    title = f"{scene_title(scene)}\n{scene.n} particles, {scene.mode}"
+    scene_bonds_png(out / f"{prefix}broken_bonds.png", model.lattice.positions, model.grain,
+                    records, scene.d, title=title + ": broken bonds by mode",
+                    highlight=highlight)
+    dated = break_steps(out)
+    if dated:
+        per = 1 if scene.mode == "quasistatic" else scene.steps_per_strain_step()
+        dated = {key: (k // per if k >= 0 else scene.n_steps) for key, k in dated.items()}
+        scene_bonds_png(out / f"{prefix}broken_steps.png", model.lattice.positions,
+                        model.grain, records, scene.d, broken_at=dated,
+                        step_label="strain step", title=title + ": broken bonds by step",
+                        highlight=highlight)
+    dat = read_scene_dat(out / "scene.dat")
+    x = dat["growth"] if scene.kind == "expanding" else dat["exx"]
+    label = "grain growth (1e-3)" if scene.kind == "expanding" else "strain e_xx (1e-3)"
+    scene_stress_png(out / f"{prefix}stress_strain.png",
+                     [{"label": scene.mode, "strain": x, "sxx": dat["sxx"], "syy": dat["syy"],
+                       "broken": dat["tension"] + dat["shear"]}], xlabel=label, title=title)
