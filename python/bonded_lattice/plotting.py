@@ -18,6 +18,13 @@ def _pyplot():
     return plt
 
 
+def save_png(fig, path: str | Path, dpi: int = 130) -> None:
+    """Lay the figure out tightly, write it as a PNG at ``dpi`` and close it."""
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    _pyplot().close(fig)
+
+
 def stress_strain_png(path: str | Path, strain: np.ndarray, stress: np.ndarray, test: str,
                       E_target: float, strength_target: float | None = None,
                       title: str = "") -> None:
@@ -41,9 +48,7 @@ def stress_strain_png(path: str | Path, strain: np.ndarray, stress: np.ndarray, 
     ax.set_ylim(bottom=0)
     ax.set_title(title)
     ax.legend(loc="best", fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    save_png(fig, path)
 
 
 def broken_bond_map_png(path: str | Path, initial_dump: str | Path, final_dump: str | Path,
@@ -80,9 +85,7 @@ def broken_bond_map_png(path: str | Path, initial_dump: str | Path, final_dump: 
         ax.set_xlabel("x (mm)")
         ax.set_ylabel(("y" if dim == 2 else "z") + " (mm)")
         ax.set_title(f"{title}\n{label}" if title else label, fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    save_png(fig, path)
     return int(round(total / 2))
 
 
@@ -116,9 +119,7 @@ def convergence_png(path: str | Path, dim: int, series: list[dict],
         ax.set_ylabel("error against the formula (%)")
         ax.legend(fontsize=7, loc="best")
     fig.suptitle(f"{dim}D quartz: convergence with model size", fontsize=11)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_png(fig, path, dpi=120)
 
 
 def strain_magnitude_png(path: str | Path, results: dict[int, list[dict]],
@@ -134,9 +135,7 @@ def strain_magnitude_png(path: str | Path, results: dict[int, list[dict]],
         ax.set_xlabel("compressive strain magnitude")
         ax.set_ylabel(f"{key} error (%)")
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_png(fig, path, dpi=120)
 
 
 def energy_png(path: str | Path, thermo: dict, title: str = "") -> None:
@@ -164,9 +163,7 @@ def energy_png(path: str | Path, thermo: dict, title: str = "") -> None:
         ax.set_xlabel("time (us)")
         ax.set_ylabel("energy (J)")
         ax.legend(fontsize=8, loc="upper left")
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    save_png(fig, path)
 
 
 def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
@@ -225,9 +222,7 @@ def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     ax.set_title(title, fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    save_png(fig, path)
     return int(broken.sum())
 
 
@@ -257,9 +252,7 @@ def scene_stress_png(path: str | Path, curves: list[dict], xlabel: str = "strain
     bx.set_ylabel("broken bonds")
     bx.legend(fontsize=7)
     fig.suptitle(title, fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    save_png(fig, path)
 
 
 def angle_histogram_png(path: str | Path, series: list[tuple[str, np.ndarray]],
@@ -282,6 +275,4 @@ def angle_histogram_png(path: str | Path, series: list[tuple[str, np.ndarray]],
     ax.set_ylabel("fraction of broken bonds")
     ax.legend(fontsize=7)
     ax.set_title(title, fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    save_png(fig, path)

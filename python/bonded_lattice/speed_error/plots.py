@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..plotting import save_png
 from .fitting import pareto_front, within
 from .lattice_runs import points
 from .settings import DEFAULT, QUANTITIES, TEST_OF, TOLERANCE
@@ -30,9 +31,7 @@ def _save(fig, path: Path, title: str | None = None) -> None:
     """Title (if any), tight layout, PNG at 120 dpi, and close the figure."""
     if title:
         fig.suptitle(title, fontsize=11)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    _plt().close(fig)
+    save_png(fig, path, dpi=120)
 
 
 def _axes_text(ax, title: str, fontsize: float, xlabel: str, ylabel: str) -> None:
