@@ -128,13 +128,14 @@ class FixLatticeBondStore : public Fix {
   //   LAST_POSITIONS,
   //   MEASURED_STEP  -> MEASURING       begin_measured_step() (fix lattice/nve, its drift)
   //   MEASURING      -> MEASURED_STEP   end_measured_step() (fix lattice/nve)
-  //   MEASURED_STEP  -> MEASURED_STEP   update_displacements() (the step's: test only),
-  //                                     end_evaluation() (the last positions are now x)
+  //   MEASURED_STEP  -> MEASURED_STEP   update_displacements() (measured this step: test
+  //                                     only), end_evaluation() (the last positions are x)
   //   MEASURED_STEP  -> LAST_POSITIONS  post_run() (x is copied in)
   // In MEASURED_STEP the last positions are the current positions x (after its
   // force evaluation the triple keeps that evaluation's displacements until the
-  // next drift); a drift that follows a drift with no force evaluation between
-  // (pair_modify compute no) measures again
+  // next drift, and forming displacements from them is an error); a drift that
+  // follows a drift with no force evaluation between (pair_modify compute no)
+  // measures again.  All ranks move together (every move is part of a step)
   enum class Phase { LAST_POSITIONS, PASS_STEP, MEASURING, MEASURED_STEP };
   Phase phase() const { return motion_phase; }
   static const char *phase_name(Phase p);
