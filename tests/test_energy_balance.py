@@ -250,3 +250,38 @@ run {int(round(1e-4 / dt))}
         errors.append(abs(e[9]))
     assert errors[0] < 1e-3 * abs(e[3])
     assert errors[0] / errors[1] == pytest.approx(4.0, rel=0.25)
+
+
+# ------------------------------------------------- the sources, found by their type
+
+def energy_setup_error(pair: str, lines: str) -> str:
+    """The error of ``run 0`` on the 72-particle block with ``pair`` (pair_style and
+    pair_coeff lines) and then ``lines``."""
+    from lammps import lammps
+
+    block = BLOCK.format(mass=MASS, kn=KN, ks=KS, xb=XB, fs0=FS0, mup=MUP, extra="", dt=1e-8,
+                         steps=0).split("pair_style")[0]
+    lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+    try:
+        with pytest.raises(Exception) as err:
+            lmp.commands_string(block + pair + lines + "fix nve all nve\nrun 0\n")
+        return str(err.value)
+    finally:
+        lmp.close()
+
+
+@pytest.mark.parametrize("source", ["lattice/viscous 2000", "lattice/wall ylo -0.002 1e10 0 0"],
+                         ids=["viscous", "wall"])
+def test_a_source_defined_after_the_compute_is_named(source):
+    # fix LATTICE/ENERGY finds the pair style and the fixes by their energy interface
+    # (LatticeEnergySource): the accounting must start after every source's setup
+    pair = f"pair_style lattice/bond\npair_coeff 1 1 {KN} {KS} {XB} {FS0} {MUP}\n"
+    err = energy_setup_error(pair, f"compute e all lattice/energy\nfix src all {source}\n")
+    style = source.split()[0]
+    assert f"compute lattice/energy e is defined before fix src {style}" in err
+
+
+def test_the_energy_compute_needs_the_lattice_pair_style():
+    err = energy_setup_error("pair_style zero 0.002\npair_coeff * *\n",
+                             "compute e all lattice/energy\n")
+    assert "compute lattice/energy requires pair_style lattice/bond" in err

@@ -78,7 +78,7 @@ void ComputeLatticeBondLocal::compute_local()
   int rows = 0;
   if (store && idx)
     for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit) rows += store->nrec[i];
+      if (mask[i] & groupbit) rows += store->record_count(i);
   if (rows > nmax) {
     nmax = rows;
     memory->destroy(vlocal);
@@ -99,10 +99,10 @@ void ComputeLatticeBondLocal::compute_local()
     if (!(mask[i] & groupbit)) continue;
     const tagint *pt = store->partners(i);
     const LatticeBondState *st = store->states(i);
-    for (int s = 0; s < store->nrec[i]; s++, row++) {
+    for (int s = 0; s < store->record_count(i); s++, row++) {
       const int j = idx[(bigint) i * stride + s];
       const int jj = (j >= 0) ? j : i;
-      int mode;
+      BreakMode mode;
       const PairLatticeBond::BondLoad load = pair->bond_load(i, s, mode);
       const PairLatticeBond::BondParams &p = load.p;
       for (size_t v = 0; v < values.size(); v++) {

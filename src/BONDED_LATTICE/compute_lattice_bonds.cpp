@@ -88,8 +88,8 @@ void ComputeLatticeBonds::compute_vector()
     for (int i = 0; i < atom->nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
       const LatticeBondState *st = store->states(i);
-      for (int s = 0; s < store->nrec[i]; s++) {
-        const int state = st[s];
+      for (int s = 0; s < store->record_count(i); s++) {
+        const LatticeBondState state = st[s];
         if (state == LB_INTACT) {
           local[0] += 1.0;
           continue;
@@ -128,7 +128,7 @@ void ComputeLatticeBonds::compute_peratom()
     const int stride = pair->partner_index_stride();
     for (int i = 0; i < atom->nlocal; i++) {
       const LatticeBondState *st = store->states(i);
-      for (int s = 0; s < store->nrec[i]; s++) {
+      for (int s = 0; s < store->record_count(i); s++) {
         if (st[s] != peratom_state) continue;
         intact_per_atom[i] += 1.0;
         const int j = idx[(bigint) i * stride + s];

@@ -13,6 +13,7 @@ ComputeStyle(lattice/bonds,ComputeLatticeBonds);
 #define LMP_COMPUTE_LATTICE_BONDS_H
 
 #include "compute.h"
+#include "fix_lattice_bond_store.h"
 
 namespace LAMMPS_NS {
 
@@ -30,7 +31,7 @@ class ComputeLatticeBonds : public Compute {
  private:
   class PairLatticeBond *pair;
   double counts[4];
-  int peratom_state;          // bond state counted per atom (intact by default)
+  LatticeBondState peratom_state;    // bond state counted per atom (intact by default)
   int nmax;
   double *intact_per_atom;    // per-atom counts of bonds in peratom_state
 };

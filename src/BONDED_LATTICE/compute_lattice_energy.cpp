@@ -10,8 +10,9 @@
    [8] external work (moving walls, prescribed groups)
    [9] total = [1] + ... + [7]   [10] balance error = [9] - [8] - [9] at start
 
-   The stored energies are evaluated here; the heat and work tallies live in
-   the styles that produce them and are switched on by the internal fix
+   The kinetic and gravitational energies are evaluated here; the springs'
+   energy and the heat and work tallies live in the styles that produce them
+   (LatticeEnergySource) and are switched on by the internal fix
    LATTICE/ENERGY this compute creates, so that without this compute the
    force loops do no accounting at all.
 ------------------------------------------------------------------------- */
@@ -22,11 +23,10 @@
 #include "error.h"
 #include "fix.h"
 #include "fix_lattice_energy.h"
-#include "fix_lattice_wall.h"
 #include "force.h"
 #include "group.h"
+#include "lattice_energy_source.h"
 #include "modify.h"
-#include "pair_lattice_bond.h"
 #include "update.h"
 
 #include <cstring>
@@ -38,7 +38,7 @@ using namespace LAMMPS_NS;
 ------------------------------------------------------------------------- */
 
 ComputeLatticeEnergy::ComputeLatticeEnergy(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), fix(nullptr), pair(nullptr)
+    Compute(lmp, narg, arg), fix(nullptr)
 {
   if (igroup != 0)
     error->all(FLERR, "compute lattice/energy needs group all (it is {}): the energy balance is "
@@ -82,8 +82,7 @@ ComputeLatticeEnergy::~ComputeLatticeEnergy()
 
 void ComputeLatticeEnergy::init()
 {
-  pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
-  if (!pair) error->all(FLERR, "compute lattice/energy requires pair_style lattice/bond");
+  // (the fix finds the energy sources and needs pair_style lattice/bond)
   fix = dynamic_cast<FixLatticeEnergy *>(modify->get_fix_by_id(fix_id));
   if (!fix) error->all(FLERR, "compute lattice/energy lost its fix {}", fix_id);
 }
@@ -92,8 +91,7 @@ void ComputeLatticeEnergy::init()
 
 void ComputeLatticeEnergy::stored_parts(double *parts)
 {
-  double local[3] = {0.0, 0.0, 0.0};
-  local[0] = pair ? pair->local_elastic_energy() : 0.0;
+  double kinetic = 0.0;
   double **v = atom->v;
   // per-atom masses (atom_style sphere) or per-type ones (mass command)
   const double *rmass = atom->rmass;
@@ -101,13 +99,14 @@ void ComputeLatticeEnergy::stored_parts(double *parts)
   const int *type = atom->type;
   for (int i = 0; i < atom->nlocal; i++) {
     const double m = rmass ? rmass[i] : mass[type[i]];
-    local[1] += 0.5 * m * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+    kinetic += 0.5 * m * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
   }
   // mass x velocity^2 in energy units, as compute ke (1 in si, cgs, micro, nano, lj)
-  local[1] *= force->mvv2e;
-  MPI_Allreduce(local, parts, 2, MPI_DOUBLE, MPI_SUM, world);
-  // fixes that are already global sums: the walls' springs and gravity
-  for (auto *wall : fix->wall_fixes()) parts[0] += wall->compute_scalar();
+  kinetic *= force->mvv2e;
+  MPI_Allreduce(&kinetic, &parts[1], 1, MPI_DOUBLE, MPI_SUM, world);
+  // the springs of the pair style and the walls, and gravity: global sums
+  parts[0] = 0.0;
+  for (auto *source : fix->sources()) parts[0] += source->elastic_energy();
   parts[2] = 0.0;
   for (auto *g : fix->gravity_fixes()) parts[2] += g->compute_scalar();
 }
@@ -116,7 +115,7 @@ void ComputeLatticeEnergy::stored_parts(double *parts)
 
 double ComputeLatticeEnergy::stored_energy()
 {
-  if (!pair || !fix) init();
+  if (!fix) init();
   double parts[3];
   stored_parts(parts);
   return parts[0] + parts[1] + parts[2];

@@ -34,7 +34,6 @@ class ComputeLatticeEnergy : public Compute {
  private:
   std::string fix_id;
   class FixLatticeEnergy *fix;
-  class PairLatticeBond *pair;
   double values[10];
 
   void stored_parts(double *parts);    // [0] elastic, [1] kinetic, [2] gravitational

@@ -25,6 +25,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
+#include <string>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -35,20 +37,20 @@ static constexpr int INITIAL_CAPACITY = 4;
 static constexpr int CAPACITY_STEP = 2;    // small steps: memory follows need
 
 FixLatticeBondStore::FixLatticeBondStore(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), nrec(nullptr), ncomp(3), spring(nullptr), partner(nullptr),
-    state(nullptr), bonds_created(0), step_limit(0.0), shear_layout(SHEAR_VECTOR),
-    motion(nullptr), motion_is_step(false), step_from_pass(false), integrated_step(-1),
-    integrated_ok(1), nmax_store(0)
+    Fix(lmp, narg, arg), nmaxslot(0), ncapacity(0), nrec(nullptr), ncomp(3), spring(nullptr),
+    partner(nullptr), state(nullptr), bonds_made(false), limit_step(0.0), layout(SHEAR_VECTOR),
+    motion(nullptr), motion_phase(Phase::LAST_POSITIONS), measured_step(-1), measured_ok(1),
+    nmax_store(0)
 {
   if (narg != 4) error->all(FLERR, "Illegal fix {} command: expected one argument (maxslot)", style);
-  maxslot = utils::inumeric(FLERR, arg[3], false, lmp);
-  if (maxslot < 1) error->all(FLERR, "Fix {} maxslot {} must be >= 1", style, maxslot);
-  capacity = std::min(maxslot, INITIAL_CAPACITY);
+  nmaxslot = utils::inumeric(FLERR, arg[3], false, lmp);
+  if (nmaxslot < 1) error->all(FLERR, "Fix {} maxslot {} must be >= 1", style, nmaxslot);
+  ncapacity = std::min(nmaxslot, INITIAL_CAPACITY);
 
   restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
-  maxexchange = ATOM_DOUBLES + maxslot * RECORD_DOUBLES;
+  maxexchange = ATOM_DOUBLES + nmaxslot * RECORD_DOUBLES;
 
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -77,29 +79,73 @@ int FixLatticeBondStore::setmask()
 }
 
 /* ----------------------------------------------------------------------
-   fix lattice/nve moved every atom this step and measured the displacements
-   into motion as it went; the last positions are the current ones again when
-   the run ends, so that a following run, minimisation or restart file sees
-   no step
+   the phases of motion (see the header): the moves each phase allows
 ------------------------------------------------------------------------- */
 
-void FixLatticeBondStore::mark_integrated(bool ok)
+const char *FixLatticeBondStore::phase_name(Phase p)
 {
-  integrated_step = update->ntimestep;
-  integrated_ok = ok ? 1 : 0;
-  motion_is_step = true;
-  step_from_pass = false;
+  switch (p) {
+    case Phase::LAST_POSITIONS: return "LAST_POSITIONS";
+    case Phase::PASS_STEP: return "PASS_STEP";
+    case Phase::MEASURING: return "MEASURING";
+    case Phase::MEASURED_STEP: return "MEASURED_STEP";
+  }
+  return "unknown";
 }
 
-bool FixLatticeBondStore::integrated() const
+// each move names the phases it may start from (see the header's table)
+void FixLatticeBondStore::move(std::initializer_list<Phase> from, Phase to, const char *action)
 {
-  return integrated_step == update->ntimestep;
+  for (Phase p : from)
+    if (p == motion_phase) {
+      motion_phase = to;
+      return;
+    }
+  std::string allowed;
+  for (Phase p : from) allowed += std::string(allowed.empty() ? "" : " or ") + phase_name(p);
+  error->one(FLERR, "fix {}: internal error at step {}: {} moves the step's displacements to "
+             "phase {} from {} only, but they are in phase {} (fix_lattice_bond_store.h)", style,
+             update->ntimestep, action, phase_name(to), allowed, phase_name(motion_phase));
 }
+
+void FixLatticeBondStore::wrong_phase(const char *action) const
+{
+  error->one(FLERR, "fix {}: internal error at step {}: {} in phase {}, where the triples do not "
+             "hold the step's displacements (fix_lattice_bond_store.h)", style, update->ntimestep,
+             action, phase_name(motion_phase));
+}
+
+/* ----------------------------------------------------------------------
+   fix lattice/nve moves every atom this step and measures the displacements
+   into motion as it goes (new - old position)
+------------------------------------------------------------------------- */
+
+double *FixLatticeBondStore::begin_measured_step()
+{
+  move({Phase::LAST_POSITIONS, Phase::MEASURED_STEP}, Phase::MEASURING,
+       "fix lattice/nve's measuring drift (begin_measured_step)");
+  return motion;
+}
+
+void FixLatticeBondStore::end_measured_step(bool ok)
+{
+  move({Phase::MEASURING}, Phase::MEASURED_STEP, "fix lattice/nve's measuring drift (end_measured_step)");
+  measured_step = update->ntimestep;
+  measured_ok = ok ? 1 : 0;
+}
+
+/* ----------------------------------------------------------------------
+   the last positions are the current ones again when the run ends, so that
+   a following run, minimisation or restart file sees no step
+------------------------------------------------------------------------- */
 
 void FixLatticeBondStore::post_run()
 {
-  if (motion_is_step) positions_to_motion();
-  integrated_step = -1;
+  if (motion_is_displacement()) {
+    move({Phase::PASS_STEP, Phase::MEASURED_STEP}, Phase::LAST_POSITIONS, "the end of the run (post_run)");
+    positions_to_motion();
+  }
+  measured_step = -1;
 }
 
 /* ----------------------------------------------------------------------
@@ -113,16 +159,35 @@ void FixLatticeBondStore::positions_to_motion()
   const double *x = atom->x[0];
   for (int i = 0; i < atom->nlocal; i++)
     for (int k = 0; k < dim; k++) motion[3 * i + k] = x[3 * i + k];
-  motion_is_step = false;
-  step_from_pass = false;
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   the store's own displacements give way to the positions; displacements
+   fix lattice/nve measured stay until its next drift (the last positions
+   are the current ones)
+------------------------------------------------------------------------- */
 
 void FixLatticeBondStore::end_evaluation()
 {
-  if (step_from_pass) positions_to_motion();
+  if (motion_phase == Phase::PASS_STEP) {
+    move({Phase::PASS_STEP}, Phase::LAST_POSITIONS, "the end of the force evaluation (end_evaluation)");
+    positions_to_motion();
+  } else {
+    move({Phase::MEASURED_STEP}, Phase::MEASURED_STEP, "the end of the force evaluation (end_evaluation)");
+  }
   for (int k = 0; k < 6; k++) h_eval[k] = domain->h[k];
+}
+
+/* ----------------------------------------------------------------------
+   the pair style creates the initial bonds at its first force evaluation, or
+   read_lattice_bonds reads them; a restart file brings the flag with it
+------------------------------------------------------------------------- */
+
+void FixLatticeBondStore::mark_bonds_created()
+{
+  if (bonds_made)
+    error->all(FLERR, "fix {}: internal error: the bond network was created a second time", style);
+  bonds_made = true;
 }
 
 /* ----------------------------------------------------------------------
@@ -164,21 +229,21 @@ void FixLatticeBondStore::form_box_step()
 
 /* ---------------------------------------------------------------------- */
 
-int FixLatticeBondStore::add_record(int i, tagint partner_tag, int record_state)
+int FixLatticeBondStore::add_record(int i, tagint partner_tag, LatticeBondState record_state)
 {
-  if (nrec[i] >= capacity) {
-    if (nrec[i] >= maxslot)
+  if (nrec[i] >= ncapacity) {
+    if (nrec[i] >= nmaxslot)
       error->one(FLERR,
                  "Atom {} has more than maxslot = {} bonds and contacts; "
                  "increase the pair_style lattice/bond keyword maxslot",
-                 atom->tag[i], maxslot);
-    set_capacity(std::min(maxslot, capacity + CAPACITY_STEP));
+                 atom->tag[i], nmaxslot);
+    set_capacity(std::min(nmaxslot, ncapacity + CAPACITY_STEP));
   }
   const int s = nrec[i]++;
   double *sp = springs(i) + s * ncomp;
   for (int k = 0; k < ncomp; k++) sp[k] = 0.0;
   partners(i)[s] = partner_tag;
-  states(i)[s] = (LatticeBondState) record_state;
+  states(i)[s] = record_state;
   return s;
 }
 
@@ -200,7 +265,7 @@ void FixLatticeBondStore::remove_record(int i, int slot)
 
 void FixLatticeBondStore::set_capacity(int n)
 {
-  if (n != capacity) relayout(n, ncomp);
+  if (n != ncapacity) relayout(n, ncomp);
 }
 
 /* ----------------------------------------------------------------------
@@ -245,24 +310,24 @@ void FixLatticeBondStore::relayout(int n, int nc)
     std::memcpy(st + (bigint) i * n, states(i), nr * sizeof(LatticeBondState));
   }
   replace_records(sp, pt, st);
-  capacity = n;
+  ncapacity = n;
   ncomp = nc;
 }
 
 /* ---------------------------------------------------------------------- */
 
-void FixLatticeBondStore::set_shear_layout(int layout)
+void FixLatticeBondStore::set_shear_layout(ShearLayout new_layout)
 {
-  shear_layout = layout;
+  layout = new_layout;
   const int nc = (layout == SHEAR_PLANAR) ? 1 : 3;
-  if (nc != ncomp) relayout(capacity, nc);
+  if (nc != ncomp) relayout(ncapacity, nc);
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixLatticeBondStore::fit_capacity(int n)
 {
-  set_capacity(std::min(maxslot, std::max({n, local_max_records(), 1})));
+  set_capacity(std::min(nmaxslot, std::max({n, local_max_records(), 1})));
 }
 
 /* ---------------------------------------------------------------------- */
@@ -291,9 +356,9 @@ void FixLatticeBondStore::set_maxslot(int n)
   if (most_all > n)
     error->all(FLERR, "pair_style lattice/bond maxslot {} is too small: an atom holds {} bonds "
                "and contacts; use maxslot >= {}", n, most_all, most_all);
-  maxslot = n;
-  maxexchange = ATOM_DOUBLES + maxslot * RECORD_DOUBLES;
-  if (capacity > maxslot) set_capacity(maxslot);
+  nmaxslot = n;
+  maxexchange = ATOM_DOUBLES + nmaxslot * RECORD_DOUBLES;
+  if (ncapacity > nmaxslot) set_capacity(nmaxslot);
 }
 
 /* ----------------------------------------------------------------------
@@ -309,13 +374,9 @@ int FixLatticeBondStore::update_displacements(double limit)
   const int nlocal = atom->nlocal;
   form_box_step();
   // already measured by the integrator this step: only the test is left
-  if (integrated())
-    return (nlocal == 0 || limit <= 0.0 || integrated_ok) ? -1 : first_beyond(limit, domain->dimension);
-  if (motion_is_step)
-    error->one(FLERR, "fix {}: internal error: displacements formed twice without a force "
-               "evaluation ending in between", style);
-  motion_is_step = true;
-  step_from_pass = true;
+  if (motion_phase == Phase::MEASURED_STEP && measured_step == update->ntimestep)
+    return (nlocal == 0 || limit <= 0.0 || measured_ok) ? -1 : first_beyond(limit, domain->dimension);
+  move({Phase::LAST_POSITIONS}, Phase::PASS_STEP, "forming the step's displacements (update_displacements)");
   if (nlocal == 0) return -1;
   if (domain->triclinic) {
     const int dim = domain->dimension;
@@ -382,7 +443,7 @@ void FixLatticeBondStore::grow_arrays(int nmax)
   for (int i = nmax_store; i < nmax; i++) nrec[i] = 0;
   motion = (double *) memory->srealloc(motion, sizeof(double) * 3 * (bigint) nmax,
                                        "lattice/bond/store:motion");
-  const bigint nslots = (bigint) nmax * capacity;
+  const bigint nslots = (bigint) nmax * ncapacity;
   spring = (double *) memory->srealloc(spring, nslots * ncomp * sizeof(double),
                                        "lattice/bond/store:spring");
   partner = (tagint *) memory->srealloc(partner, nslots * sizeof(tagint),
@@ -413,7 +474,8 @@ void FixLatticeBondStore::set_arrays(int i)
 {
   nrec[i] = 0;
   const int dim = domain->dimension;
-  for (int k = 0; k < 3; k++) motion[3 * i + k] = (motion_is_step || k >= dim) ? 0.0 : atom->x[i][k];
+  for (int k = 0; k < 3; k++)
+    motion[3 * i + k] = (motion_is_displacement() || k >= dim) ? 0.0 : atom->x[i][k];
 }
 
 /* ----------------------------------------------------------------------
@@ -445,12 +507,12 @@ int FixLatticeBondStore::unpack_atom(int i, const double *buf)
 {
   int m = 0;
   const int n = (int) ubuf(buf[m++]).i;
-  if (n < 0 || n > maxslot)
+  if (n < 0 || n > nmaxslot)
     error->one(FLERR,
                "Atom {} carries {} bond records but maxslot is {}; use a pair_style "
                "lattice/bond maxslot of at least {}",
-               atom->tag[i], n, maxslot, n);
-  if (n > capacity) set_capacity(std::min(maxslot, n + CAPACITY_STEP));
+               atom->tag[i], n, nmaxslot, n);
+  if (n > ncapacity) set_capacity(std::min(nmaxslot, n + CAPACITY_STEP));
   nrec[i] = n;
   // (a 2D atom's third value stays 0: the displacements of 2D atoms have no z part)
   for (int k = 0; k < 3; k++) motion[3 * i + k] = (k < domain->dimension) ? buf[m + k] : 0.0;
@@ -496,7 +558,7 @@ int FixLatticeBondStore::pack_restart(int i, double *buf)
 {
   // restart files are written after a complete step: the position of its
   // force evaluation is the current one when motion holds the step
-  const int m = pack_atom(i, buf + 1, motion_is_step ? atom->x[i] : motion + 3 * i);
+  const int m = pack_atom(i, buf + 1, motion_is_displacement() ? atom->x[i] : motion + 3 * i);
   buf[0] = m + 1;
   return m + 1;
 }
@@ -522,7 +584,7 @@ int FixLatticeBondStore::size_restart(int i)
 
 int FixLatticeBondStore::maxsize_restart()
 {
-  return 1 + ATOM_DOUBLES + maxslot * RECORD_DOUBLES;
+  return 1 + ATOM_DOUBLES + nmaxslot * RECORD_DOUBLES;
 }
 
 /* ----------------------------------------------------------------------
@@ -537,8 +599,8 @@ int FixLatticeBondStore::maxsize_restart()
 void FixLatticeBondStore::write_restart(FILE *fp)
 {
   if (comm->me == 0) {
-    double list[10] = {(double) RESTART_FORMAT, (double) bonds_created, (double) maxslot,
-                       (double) shear_layout};
+    double list[10] = {(double) RESTART_FORMAT, bonds_made ? 1.0 : 0.0, (double) nmaxslot,
+                       (double) layout};
     for (int k = 0; k < 6; k++) list[4 + k] = h_eval[k];
     int size = sizeof(list);
     fwrite(&size, sizeof(int), 1, fp);
@@ -557,8 +619,9 @@ void FixLatticeBondStore::restart(char *buf)
                "(an {} BONDED_LATTICE version); this version reads formats 2 to {}. Rerun "
                "the model from its data file, or write the restart again with the version that "
                "made it", format < 2 ? 1 : format, format < 2 ? "older" : "newer", RESTART_FORMAT);
-  bonds_created = static_cast<int>(list[1]);
-  set_shear_layout((format == 2) ? SHEAR_VECTOR : static_cast<int>(list[3]));
+  bonds_made = static_cast<int>(list[1]) != 0;
+  set_shear_layout((format == 2 || static_cast<int>(list[3]) != SHEAR_PLANAR) ? SHEAR_VECTOR
+                                                                              : SHEAR_PLANAR);
   for (int k = 0; k < 6; k++) h_eval[k] = (format >= 4) ? list[4 + k] : domain->h[k];
 }
 
@@ -567,5 +630,5 @@ void FixLatticeBondStore::restart(char *buf)
 double FixLatticeBondStore::memory_usage()
 {
   const double per_record = ncomp * sizeof(double) + sizeof(tagint) + sizeof(LatticeBondState);
-  return (double) nmax_store * (sizeof(int) + 3 * sizeof(double) + capacity * per_record);
+  return (double) nmax_store * (sizeof(int) + 3 * sizeof(double) + ncapacity * per_record);
 }

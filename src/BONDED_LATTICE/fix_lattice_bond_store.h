@@ -14,6 +14,8 @@ FixStyle(LATTICE/BOND/STORE,FixLatticeBondStore);
 
 #include "fix.h"
 
+#include <initializer_list>
+
 namespace LAMMPS_NS {
 
 // One bond or contact between two particles.  It is stored once, on the
@@ -36,6 +38,18 @@ enum LatticeBondState : unsigned char {
   LB_CONTACT = 3
 };
 
+// how an intact bond breaks (or would break): the larger of its tensile and
+// shear ratios to the threshold (PairLatticeBond::bond_load), None for a
+// record that cannot break (a broken bond or a contact).  A broken bond keeps
+// its mode as its state (broken_state)
+enum class BreakMode : unsigned char { None = 0, Tension = 1, Shear = 2 };
+
+// the state of a bond that broke in mode m (m is Tension or Shear)
+inline LatticeBondState broken_state(BreakMode m)
+{
+  return (m == BreakMode::Tension) ? LB_BROKEN_TENSION : LB_BROKEN_SHEAR;
+}
+
 class FixLatticeBondStore : public Fix {
  public:
   FixLatticeBondStore(class LAMMPS *, int, char **);
@@ -56,11 +70,19 @@ class FixLatticeBondStore : public Fix {
   void restart(char *) override;
   double memory_usage() override;
 
-  // record s (0 <= s < nrec[i]) of atom i: springs(i)[s*ncomp .. s*ncomp + ncomp-1],
-  // partners(i)[s], states(i)[s]; each atom has room for `capacity` records
-  double *springs(int i) const { return spring + (bigint) i * capacity * ncomp; }
-  tagint *partners(int i) const { return partner + (bigint) i * capacity; }
-  LatticeBondState *states(int i) const { return state + (bigint) i * capacity; }
+  // ---- the records ------------------------------------------------------
+  // record s (0 <= s < record_count(i)) of atom i: springs(i)[s*ncomp .. s*ncomp + ncomp-1],
+  // partners(i)[s], states(i)[s]; each atom has room for capacity() records.
+  // The pointers are the arrays themselves (no copy, no check): the force loop
+  // streams them
+  double *springs(int i) const { return spring + (bigint) i * ncapacity * ncomp; }
+  tagint *partners(int i) const { return partner + (bigint) i * ncapacity; }
+  LatticeBondState *states(int i) const { return state + (bigint) i * ncapacity; }
+  int record_count(int i) const { return nrec[i]; }
+  const int *record_counts() const { return nrec; }    // per atom (the force loop)
+  int capacity() const { return ncapacity; }    // records stored per atom now
+  int maxslot() const { return nmaxslot; }      // most records an atom may hold
+  int spring_components() const { return ncomp; }    // doubles per spring: 1 or 3
   // squared length of the spring of record s of atom i (either layout)
   double spring_squared(int i, int s) const
   {
@@ -70,32 +92,85 @@ class FixLatticeBondStore : public Fix {
     return s2;
   }
   // a new record with a zero spring, its slot; grows the capacity, error beyond maxslot
-  int add_record(int i, tagint partner_tag, int record_state);
+  int add_record(int i, tagint partner_tag, LatticeBondState record_state);
   void remove_record(int i, int slot);     // swap-with-last removal
+  // how the records hold the shear spring: SHEAR_VECTOR, a 3-vector in the
+  // tangent plane, ncomp = 3 (3D; also 2D records read from a bond file or an older
+  // restart file, until the pair style turns them into scalars), or
+  // SHEAR_PLANAR, the signed length along t = z x n, ncomp = 1 (2D).  The
+  // values are those of the restart files
+  enum ShearLayout { SHEAR_VECTOR = 0, SHEAR_PLANAR = 1 };
+  ShearLayout shear_layout() const { return layout; }
   // change the shear layout; records keep spring component 0 (the signed
   // length when turning vectors into planar springs, see shear_layout)
-  void set_shear_layout(int layout);
+  void set_shear_layout(ShearLayout new_layout);
   void set_maxslot(int n);                 // new limit; error if an atom holds more
   void fit_capacity(int n);                // capacity = max(n, every atom's count) <= maxslot
   int local_max_records() const;
   int global_max_records() const;          // over all ranks (collective)
-  // this step's displacements: formed from the last positions by the store
-  // (disp = x - last position, periodic jumps removed), or already measured
-  // by fix lattice/nve; with limit > 0 the index of an atom that moved more
-  // than limit along an axis (or to NaN), else -1
+
+  // ---- the bond network's life cycle ----------------------------------------
+  // true once the initial bonds exist: made by the pair style's first force
+  // evaluation or read by read_lattice_bonds (each calls mark_bonds_created
+  // once), or read from a restart file.  Never reset
+  bool bonds_created() const { return bonds_made; }
+  // the one writer of that flag; an internal error if the bonds exist already
+  void mark_bonds_created();
+
+  // ---- the step's displacements: phases of the per-atom triple `motion` -----
+  // One triple per atom holds either the atom's position at the last force
+  // evaluation or its displacement over this step (one array in two roles
+  // saves 32 bytes per particle).  The phase says which, and who may move it
+  // on; every move is checked (a wrong one is an internal error naming both
+  // phases):
+  //   LAST_POSITIONS -> PASS_STEP       update_displacements() (pair compute: x - last position)
+  //   PASS_STEP      -> LAST_POSITIONS  end_evaluation() (pair compute) or post_run()
+  //   LAST_POSITIONS,
+  //   MEASURED_STEP  -> MEASURING       begin_measured_step() (fix lattice/nve, its drift)
+  //   MEASURING      -> MEASURED_STEP   end_measured_step() (fix lattice/nve)
+  //   MEASURED_STEP  -> MEASURED_STEP   update_displacements() (measured this step: test
+  //                                     only), end_evaluation() (the last positions are x)
+  //   MEASURED_STEP  -> LAST_POSITIONS  post_run() (x is copied in)
+  // In MEASURED_STEP the last positions are the current positions x (after its
+  // force evaluation the triple keeps that evaluation's displacements until the
+  // next drift, and forming displacements from them is an error); a drift that
+  // follows a drift with no force evaluation between (pair_modify compute no)
+  // measures again.  All ranks move together (every move is part of a step)
+  enum class Phase { LAST_POSITIONS, PASS_STEP, MEASURING, MEASURED_STEP };
+  Phase phase() const { return motion_phase; }
+  static const char *phase_name(Phase p);
+  // the triple is a displacement (PASS_STEP, MEASURING or MEASURED_STEP), not a position
+  bool motion_is_displacement() const { return motion_phase != Phase::LAST_POSITIONS; }
+
+  // pair style, every force evaluation: the longest step along an axis that
+  // is not an instability (a tenth of the smallest radius).  Published before
+  // the displacements are formed; fix lattice/nve tests its next drift against
+  // the value of the last evaluation (0 before the first: no test)
+  void publish_step_limit(double limit) { limit_step = limit; }
+  double step_limit() const { return limit_step; }
+
+  // pair style: this step's displacements.  Formed from the last positions
+  // by the store (disp = x - last position, periodic jumps removed), or, if
+  // fix lattice/nve measured them this step, only tested; with limit > 0 the
+  // index of an atom that moved more than limit along an axis (or to NaN), else -1
   int update_displacements(double limit);
-  // the force evaluation that used the displacements is over: the store's
-  // own displacements give way to the current positions again
+  // pair style: the force evaluation that used the displacements is over; the
+  // store's own displacements give way to the current positions again
   void end_evaluation();
-  // fix lattice/nve, integrating every atom, measured this step's displacements
-  // into displacements() while it moved them (new - old position);
-  // update_displacements() then only tests them; ok: none longer than step_limit
-  void mark_integrated(bool ok);
-  bool integrated() const;    // this step's displacements are measured
+  // fix lattice/nve, integrating every atom: the triples to fill with this
+  // step's displacements (new - old position, 3 per atom) while it moves the
+  // atoms; then end_measured_step, ok: none longer than step_limit() (nor NaN)
+  double *begin_measured_step();
+  void end_measured_step(bool ok);
   // the displacements over the step (3 per atom, ghosts by forward comm of the
-  // pair style), valid from update_displacements() or the measuring drift to the
-  // end of the force evaluation
-  double *displacements() const { return motion; }
+  // pair style): the array itself, for the force loop.  Only in the phases
+  // PASS_STEP and MEASURED_STEP (internal error otherwise)
+  double *displacements() const
+  {
+    if (motion_phase != Phase::PASS_STEP && motion_phase != Phase::MEASURED_STEP)
+      wrong_phase("reading the step's displacements (displacements())");
+    return motion;
+  }
 
   // the periodic box over the step.  A ghost is its owner shifted by a lattice
   // vector of the box, p0 a + p1 b + p2 c (p = the first three values of LAMMPS'
@@ -120,34 +195,27 @@ class FixLatticeBondStore : public Fix {
   };
   const BoxStep &box_step() const { return boxstep; }
 
-  int maxslot;           // most records an atom may hold (pair_style keyword)
-  int capacity;          // records stored per atom now: grows on demand up to maxslot
+ private:
+  int nmaxslot;          // most records an atom may hold (pair_style keyword)
+  int ncapacity;         // records stored per atom now: grows on demand up to nmaxslot
   int *nrec;             // number of records per atom
   int ncomp;             // doubles per spring: 1 (SHEAR_PLANAR) or 3 (SHEAR_VECTOR)
-  double *spring;        // shear springs, ncomp * capacity per atom
-  tagint *partner;       // tag of the higher-tag particle, capacity per atom
-  LatticeBondState *state;    // capacity per atom
-  int bonds_created;     // 1 once the initial bonds exist; never reset (survives restart)
-  double step_limit;     // longest step along an axis that is not an instability (pair style)
-  // how the records hold the shear spring: SHEAR_VECTOR, a 3-vector in the
-  // tangent plane, ncomp = 3 (3D; also 2D records read from a bond file or an older
-  // restart file, until the pair style turns them into scalars), or
-  // SHEAR_PLANAR, the signed length along t = z x n, ncomp = 1 (2D).
-  // Read only: change it with set_shear_layout()
-  enum { SHEAR_VECTOR = 0, SHEAR_PLANAR = 1 };
-  int shear_layout;
+  double *spring;        // shear springs, ncomp * ncapacity per atom
+  tagint *partner;       // tag of the higher-tag particle, ncapacity per atom
+  LatticeBondState *state;    // ncapacity per atom
+  bool bonds_made;       // see bonds_created()
+  double limit_step;     // see step_limit()
+  ShearLayout layout;    // see shear_layout()
 
- private:
-  // one triple per atom (nmax x 3 in one block), in one of two roles: the
-  // position at the last force evaluation, or this step's displacement (from
-  // the moment it is formed until the evaluation is over; with fix lattice/nve
-  // measuring, until the next drift, the last positions being the current
-  // ones).  One array in two roles instead of two saves 32 bytes per particle
+  // one triple per atom (nmax x 3 in one block): the position at the last
+  // force evaluation or this step's displacement, as motion_phase says
   double *motion;
-  bool motion_is_step;       // motion holds displacements
-  bool step_from_pass;       // ... formed by update_displacements (end_evaluation restores)
-  bigint integrated_step;    // the step whose displacements fix lattice/nve measured, or -1
-  int integrated_ok;         // and whether none of them was longer than step_limit
+  Phase motion_phase;
+  bigint measured_step;    // the step whose displacements fix lattice/nve measured, or -1
+  int measured_ok;         // and whether none of them was longer than step_limit
+  // `action` moves the phase to `to`: an internal error unless the phase is one of `from`
+  void move(std::initializer_list<Phase> from, Phase to, const char *action);
+  [[noreturn]] void wrong_phase(const char *action) const;    // action needs displacements
   int nmax_store;
   // the box (domain->h: xprd, yprd, zprd, yz, xz, xy) at the last force
   // evaluation, and its change to this one (see BoxStep)

@@ -9,8 +9,8 @@
    displacement; the trapezoidal rule is what velocity Verlet conserves.
    The per-atom history holds the last force and position of group atoms.
 
-   The sources' tallies (pair, viscous and wall fixes) are plain per-rank
-   sums that start at zero when the source is created; this fix takes a base
+   The sources' tallies (LatticeEnergySource: the pair style, the viscous
+   and wall fixes) are plain per-rank sums that start at zero when the source is created; this fix takes a base
    at the first setup (and after a restart) and reports the differences,
    plus the totals carried in a restart file.
 ------------------------------------------------------------------------- */
@@ -22,12 +22,10 @@
 #include "compute_lattice_energy.h"
 #include "domain.h"
 #include "error.h"
-#include "fix_lattice_viscous.h"
-#include "fix_lattice_wall.h"
 #include "force.h"
 #include "group.h"
 #include "modify.h"
-#include "pair_lattice_bond.h"
+#include "pair.h"
 
 #include <cstring>
 
@@ -39,7 +37,7 @@ using namespace FixConst;
 ------------------------------------------------------------------------- */
 
 FixLatticeEnergy::FixLatticeEnergy(LAMMPS *lmp, int narg, char **arg) :
-    FixLatticeAtomHistory(lmp, narg, arg), workbit(0), pair(nullptr), group_work(0.0),
+    FixLatticeAtomHistory(lmp, narg, arg), workbit(0), group_work(0.0),
     group_ke_prev(0.0), need_base(1), start_set(0), energy0(0.0)
 {
   if (narg < 4) error->all(FLERR, "Illegal fix LATTICE/ENERGY command (internal fix)");
@@ -66,33 +64,29 @@ int FixLatticeEnergy::setmask()
 
 /* ----------------------------------------------------------------------
    find the sources and switch their tallies on (again at every run: styles
-   may have been added or replaced since)
+   may have been added or replaced since): the pair style (lattice/bond; it
+   is meant as the only pair style, and a sub-style of pair hybrid is reached
+   by its name, the only way the public headers give) and every fix that
+   implements LatticeEnergySource, in the order of their definition
 ------------------------------------------------------------------------- */
 
 void FixLatticeEnergy::init()
 {
-  pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
+  energy_sources.clear();
+  auto *pair = dynamic_cast<LatticeEnergySource *>(force->pair);
+  if (!pair) pair = dynamic_cast<LatticeEnergySource *>(force->pair_match("lattice/bond", 1));
   if (!pair) error->all(FLERR, "compute lattice/energy requires pair_style lattice/bond");
-  pair->enable_tallies(1);
-  viscous.clear();
-  walls.clear();
-  for (auto *fix : modify->get_fix_by_style("^lattice/viscous$")) {
-    auto *v = dynamic_cast<FixLatticeViscous *>(fix);
-    v->enable_tallies(1);
-    viscous.push_back(v);
-  }
-  for (auto *fix : modify->get_fix_by_style("^lattice/wall$")) {
-    auto *w = dynamic_cast<FixLatticeWall *>(fix);
-    w->enable_tallies(1);
-    walls.push_back(w);
-  }
+  energy_sources.push_back(pair);
+  for (auto *fix : modify->get_fix_list())
+    if (auto *source = dynamic_cast<LatticeEnergySource *>(fix)) energy_sources.push_back(source);
+  for (auto *source : energy_sources) source->enable_energy_tallies(true);
   gravity = modify->get_fix_by_style("^gravity");
   // the starting energy and the work groups' forces are taken in setup(): the
   // fixes that add forces or energy must have done their setup by then
   const int me = modify->find_fix(id);
   for (int i = me + 1; i < modify->nfix; i++) {
     const std::string style = modify->fix[i]->style;
-    if (style == "lattice/wall" || style == "lattice/viscous" || utils::strmatch(style, "^gravity"))
+    if (dynamic_cast<LatticeEnergySource *>(modify->fix[i]) || utils::strmatch(style, "^gravity"))
       error->all(FLERR, "compute lattice/energy {} is defined before fix {} {}: define the "
                  "compute after the fixes that add forces (lattice/wall, lattice/viscous, "
                  "gravity), so that the accounting starts from their energies",
@@ -239,18 +233,8 @@ double FixLatticeEnergy::group_kinetic() const
 void FixLatticeEnergy::raw(double *local)
 {
   for (int k = 0; k < NTALLY; k++) local[k] = 0.0;
-  if (pair) {
-    const double *q = pair->heat_tallies();
-    local[BREAK_NORMAL] = q[0];
-    local[BREAK_SHEAR] = q[1];
-    local[FRICTION] = q[2];
-  }
-  for (auto *v : viscous) local[VISCOUS] += v->heat_tally();
-  for (auto *w : walls) {
-    local[FRICTION] += w->heat_tally();
-    local[WORK] += w->work_tally();
-  }
-  local[WORK] += group_work;
+  for (const auto *source : energy_sources) source->add_energy_tallies(local);
+  local[LatticeEnergySource::WORK] += group_work;
 }
 
 /* ---------------------------------------------------------------------- */

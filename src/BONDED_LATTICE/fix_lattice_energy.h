@@ -1,11 +1,11 @@
 /* -*- c++ -*- ----------------------------------------------------------
    BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
 
-   fix LATTICE/ENERGY: internal fix of compute lattice/energy.  It switches
-   on the heat and work tallies of pair lattice/bond, fix lattice/viscous and
-   fix lattice/wall, integrates the work done on groups whose motion is
-   prescribed, and keeps the accounting's totals and starting energy in
-   restart files.
+   fix LATTICE/ENERGY: internal fix of compute lattice/energy.  It finds the
+   energy sources (LatticeEnergySource: pair lattice/bond, fix lattice/viscous,
+   fix lattice/wall) and switches their heat and work tallies on, integrates
+   the work done on groups whose motion is prescribed, and keeps the
+   accounting's totals and starting energy in restart files.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -18,6 +18,7 @@ FixStyle(LATTICE/ENERGY,FixLatticeEnergy);
 #define LMP_FIX_LATTICE_ENERGY_H
 
 #include "fix_lattice_atom_history.h"
+#include "lattice_energy_source.h"
 
 #include <set>
 #include <string>
@@ -28,7 +29,7 @@ namespace LAMMPS_NS {
 class FixLatticeEnergy : public FixLatticeAtomHistory {
  public:
   // tallies, in the order of compute lattice/energy's vector elements 4-8
-  enum { VISCOUS, BREAK_NORMAL, BREAK_SHEAR, FRICTION, WORK, NTALLY };
+  static constexpr int NTALLY = LatticeEnergySource::NTALLY;
 
   FixLatticeEnergy(class LAMMPS *, int, char **);
   int setmask() override;
@@ -44,17 +45,16 @@ class FixLatticeEnergy : public FixLatticeAtomHistory {
   // the total energy when the accounting started, and whether it has
   bool started() const { return start_set; }
   double start_energy() const { return energy0; }
-  // the sources of stored energy outside the pair style, found at init()
-  const std::vector<class FixLatticeWall *> &wall_fixes() const { return walls; }
+  // the energy sources (the pair style first, then fixes in the order of
+  // their definition) and the gravity fixes, found at init()
+  const std::vector<LatticeEnergySource *> &sources() const { return energy_sources; }
   const std::vector<class Fix *> &gravity_fixes() const { return gravity; }
 
  protected:
   std::string compute_id;            // the compute lattice/energy that owns this fix
   int workbit;                       // union of the work groups' bits
   std::vector<std::string> work_groups;
-  class PairLatticeBond *pair;
-  std::vector<class FixLatticeViscous *> viscous;
-  std::vector<class FixLatticeWall *> walls;
+  std::vector<LatticeEnergySource *> energy_sources;
   std::vector<class Fix *> gravity;
 
   double carried[NTALLY];    // totals brought in by a restart file

@@ -157,7 +157,8 @@ void FixLatticeNVE::dispatch(bool drift)
 
 double FixLatticeNVE::step_cap() const
 {
-  return (store->step_limit > 0.0) ? store->step_limit : HUGE_VAL;
+  const double limit = store->step_limit();
+  return (limit > 0.0) ? limit : HUGE_VAL;
 }
 
 /* ----------------------------------------------------------------------
@@ -173,7 +174,7 @@ template <bool DRIFT, bool MEASURE> void FixLatticeNVE::stream()
   double *__restrict const x = atom->x[0];
   double *__restrict const v = atom->v[0];
   const double *__restrict const f = atom->f[0];
-  double *__restrict const disp = MEASURE ? store->displacements() : nullptr;
+  double *__restrict const disp = MEASURE ? store->begin_measured_step() : nullptr;
   const double dtfm = dtfm_type[1], dt = dtv;
   const int n = 3 * atom->nlocal;
   const double cap = MEASURE ? step_cap() : HUGE_VAL;
@@ -190,7 +191,7 @@ template <bool DRIFT, bool MEASURE> void FixLatticeNVE::stream()
       }
     }
   }
-  if (MEASURE) store->mark_integrated(!bad);
+  if (MEASURE) store->end_measured_step(!bad);
 }
 
 /* ----------------------------------------------------------------------
@@ -238,7 +239,7 @@ template <bool PLANAR, bool RMASS> void FixLatticeNVE::drift_measured()
   double *__restrict const x = atom->x[0];
   double *__restrict const v = atom->v[0];
   const double *__restrict const f = atom->f[0];
-  double *__restrict const disp = store->displacements();
+  double *__restrict const disp = store->begin_measured_step();
   const double *const rmass = atom->rmass;
   const double *const dtfm_of = dtfm_type.data();
   const double dt = dtv;    // a local: the stores to x and v cannot change it
@@ -257,5 +258,5 @@ template <bool PLANAR, bool RMASS> void FixLatticeNVE::drift_measured()
       ok &= (std::fabs(step) <= cap);
     }
   }
-  store->mark_integrated(ok);
+  store->end_measured_step(ok);
 }

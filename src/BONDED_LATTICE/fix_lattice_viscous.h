@@ -13,10 +13,11 @@ FixStyle(lattice/viscous,FixLatticeViscous);
 #define LMP_FIX_LATTICE_VISCOUS_H
 
 #include "fix_lattice_atom_history.h"
+#include "lattice_energy_source.h"
 
 namespace LAMMPS_NS {
 
-class FixLatticeViscous : public FixLatticeAtomHistory {
+class FixLatticeViscous : public FixLatticeAtomHistory, public LatticeEnergySource {
  public:
   FixLatticeViscous(class LAMMPS *, int, char **);
   int setmask() override;
@@ -28,9 +29,11 @@ class FixLatticeViscous : public FixLatticeAtomHistory {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  // energy accounting (compute lattice/energy): heat dissipated on this rank
-  double heat_tally() const { return heat; }
-  void enable_tallies(int flag) { tally_flag = flag; }
+  // energy accounting (LatticeEnergySource): the heat dissipated on this rank
+  // (VISCOUS); the damping stores no energy
+  void enable_energy_tallies(bool on) override { tally_flag = on ? 1 : 0; }
+  void add_energy_tallies(double *tally) const override { tally[VISCOUS] += heat; }
+  double elastic_energy() override { return 0.0; }
 
  protected:
   double eta;         // damping coefficient, force/velocity

@@ -14,12 +14,13 @@ FixStyle(lattice/wall,FixLatticeWall);
 #define LMP_FIX_LATTICE_WALL_H
 
 #include "fix_lattice_atom_history.h"
+#include "lattice_energy_source.h"
 
 #include <string>
 
 namespace LAMMPS_NS {
 
-class FixLatticeWall : public FixLatticeAtomHistory {
+class FixLatticeWall : public FixLatticeAtomHistory, public LatticeEnergySource {
  public:
   FixLatticeWall(class LAMMPS *, int, char **);
   ~FixLatticeWall() override;
@@ -38,11 +39,16 @@ class FixLatticeWall : public FixLatticeAtomHistory {
 
   double position() const;    // wall coordinate at the current step
 
-  // energy accounting (compute lattice/energy), on this rank: work done by the
-  // wall on the particles (it moves) and heat of its sliding contacts
-  double work_tally() const { return work; }
-  double heat_tally() const { return heat; }
-  void enable_tallies(int flag) { tally_flag = flag; }
+  // energy accounting (LatticeEnergySource), on this rank: heat of its sliding
+  // contacts (FRICTION) and work done by the wall on the particles as it moves
+  // (WORK); its springs' energy is compute_scalar()
+  void enable_energy_tallies(bool on) override { tally_flag = on ? 1 : 0; }
+  void add_energy_tallies(double *tally) const override
+  {
+    tally[FRICTION] += heat;
+    tally[WORK] += work;
+  }
+  double elastic_energy() override { return compute_scalar(); }
 
  protected:
   int dim;          // 0, 1, 2 for x, y, z

@@ -122,7 +122,7 @@ void WriteLatticeBonds::command(int narg, char **arg)
   if (narg != 1) error->all(FLERR, "write_lattice_bonds needs one argument: the file name");
   PairLatticeBond *pair = lattice_pair(lmp, "write_lattice_bonds");
   FixLatticeBondStore *store = pair->store();
-  if (!store || !store->bonds_created)
+  if (!store || !store->bonds_created())
     error->all(FLERR, "write_lattice_bonds: there is no bond network yet; the bonds are made at "
                "the first run (use 'run 0' first)");
 
@@ -133,7 +133,7 @@ void WriteLatticeBonds::command(int narg, char **arg)
   for (int i = 0; i < atom->nlocal; i++) {
     const tagint *pt = store->partners(i);
     const LatticeBondState *st = store->states(i);
-    for (int s = 0; s < store->nrec[i]; s++) {
+    for (int s = 0; s < store->record_count(i); s++) {
       double sh[3];
       if (!pair->shear_vector(i, s, sh)) unknown++;
       mine.insert(mine.end(), {(double) tag[i], (double) pt[s], (double) st[s],
@@ -198,7 +198,7 @@ void ReadLatticeBonds::command(int narg, char **arg)
   PairLatticeBond *pair = lattice_pair(lmp, "read_lattice_bonds");
   pair->ensure_atom_map();
   FixLatticeBondStore *store = pair->acquire_store();
-  if (store->bonds_created)
+  if (store->bonds_created())
     error->all(FLERR, "read_lattice_bonds: a bond network exists already (made by a run or "
                "read from a restart file); read the bonds right after read_data and pair_style");
 
@@ -233,7 +233,7 @@ void ReadLatticeBonds::command(int narg, char **arg)
       if (!missing_partner) first_missing = (tagint) v[1];
       missing_partner++;
     }
-    const int s = store->add_record(i, (tagint) v[1], (int) v[2]);
+    const int s = store->add_record(i, (tagint) v[1], (LatticeBondState) (int) v[2]);
     double *sh = store->springs(i) + 3 * s;
     for (int c = 0; c < 3; c++) sh[c] = v[3 + c];
     placed++;
@@ -248,7 +248,7 @@ void ReadLatticeBonds::command(int narg, char **arg)
   if (missing_all)
     error->all(FLERR, "read_lattice_bonds: {} records name a partner atom ID that does not exist "
                "(e.g. {}); the file does not belong to these atoms", missing_all, first_missing);
-  store->bonds_created = 1;
+  store->mark_bonds_created();
   if (comm->me == 0)
     utils::logmesg(lmp, "read_lattice_bonds: {} records from {} (no bonds are created from "
                    "positions)\n", nrecords, arg[0]);

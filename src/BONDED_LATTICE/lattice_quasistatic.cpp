@@ -106,7 +106,7 @@ void LatticeQuasistatic::command(int narg, char **arg)
     relaxations++;
     if (maxbreak >= 0 && broken >= maxbreak) break;
     tagint owner = 0, partner = 0;
-    int mode = 0;
+    BreakMode mode = BreakMode::None;
     worst = worst_bond(owner, partner, mode);
     if (!(worst > 1.0)) break;
     if (break_all) {
@@ -115,11 +115,11 @@ void LatticeQuasistatic::command(int narg, char **arg)
       const int i = atom->map(owner);
       if (i >= 0 && i < atom->nlocal) {
         const tagint *pt = pair->store()->partners(i);
-        for (int s = 0; s < pair->store()->nrec[i]; s++)
+        for (int s = 0; s < pair->store()->record_count(i); s++)
           if (pt[s] == partner) pair->break_record(i, s, mode);
       }
       broken++;
-      (mode == LB_BROKEN_TENSION ? tension : shear)++;
+      (mode == BreakMode::Tension ? tension : shear)++;
     }
   }
   pair->enable_breaking(true);
@@ -227,19 +227,19 @@ double LatticeQuasistatic::largest_force() const
    equal ratios go to the lowest (owner, partner) IDs
 ------------------------------------------------------------------------- */
 
-double LatticeQuasistatic::worst_bond(tagint &owner, tagint &partner, int &mode) const
+double LatticeQuasistatic::worst_bond(tagint &owner, tagint &partner, BreakMode &mode) const
 {
   FixLatticeBondStore *store = pair->store();
   const tagint *tag = atom->tag;
   double best = 0.0;
   tagint best_owner = MAXTAGINT, best_partner = MAXTAGINT;
-  int best_mode = 0;
+  BreakMode best_mode = BreakMode::None;
   for (int i = 0; i < atom->nlocal; i++) {
     const tagint *pt = store->partners(i);
-    for (int s = 0; s < store->nrec[i]; s++) {
-      int m;
+    for (int s = 0; s < store->record_count(i); s++) {
+      BreakMode m;
       const double ratio = pair->break_ratio(i, s, m);
-      if (m == LB_INTACT) continue;
+      if (m == BreakMode::None) continue;
       const bool lower = tag[i] < best_owner || (tag[i] == best_owner && pt[s] < best_partner);
       if (ratio > best || (ratio == best && lower)) {
         best = ratio;
@@ -258,11 +258,12 @@ double LatticeQuasistatic::worst_bond(tagint &owner, tagint &partner, int &mode)
   if (mine[0] != low_owner) mine[1] = MAXTAGINT;
   tagint low_partner = MAXTAGINT;
   MPI_Allreduce(&mine[1], &low_partner, 1, MPI_LMP_TAGINT, MPI_MIN, world);
-  int my_mode = (mine[0] == low_owner && mine[1] == low_partner) ? best_mode : 0, the_mode = 0;
+  // (as an int; None = 0 is below both modes)
+  int my_mode = (mine[0] == low_owner && mine[1] == low_partner) ? (int) best_mode : 0, the_mode = 0;
   MPI_Allreduce(&my_mode, &the_mode, 1, MPI_INT, MPI_MAX, world);
   owner = low_owner;
   partner = low_partner;
-  mode = the_mode;
+  mode = static_cast<BreakMode>(the_mode);
   return worst;
 }
 
@@ -275,11 +276,11 @@ bigint LatticeQuasistatic::break_beyond_threshold(int &tension, int &shear)
   FixLatticeBondStore *store = pair->store();
   int counts[2] = {0, 0}, all[2] = {0, 0};
   for (int i = 0; i < atom->nlocal; i++)
-    for (int s = 0; s < store->nrec[i]; s++) {
-      int m;
-      if (pair->break_ratio(i, s, m) > 1.0 && m != LB_INTACT) {
+    for (int s = 0; s < store->record_count(i); s++) {
+      BreakMode m;
+      if (pair->break_ratio(i, s, m) > 1.0 && m != BreakMode::None) {
         pair->break_record(i, s, m);
-        counts[m == LB_BROKEN_TENSION ? 0 : 1]++;
+        counts[m == BreakMode::Tension ? 0 : 1]++;
       }
     }
   MPI_Allreduce(counts, all, 2, MPI_INT, MPI_SUM, world);

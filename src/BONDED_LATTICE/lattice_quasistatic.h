@@ -24,6 +24,7 @@ CommandStyle(lattice/quasistatic,LatticeQuasistatic);
 namespace LAMMPS_NS {
 
 class PairLatticeBond;
+enum class BreakMode : unsigned char;    // fix_lattice_bond_store.h
 
 class LatticeQuasistatic : public Command {
  public:
@@ -44,7 +45,7 @@ class LatticeQuasistatic : public Command {
 
   bigint relax();               // returns the iterations or steps taken
   double largest_force() const;
-  double worst_bond(tagint &owner, tagint &partner, int &mode) const;
+  double worst_bond(tagint &owner, tagint &partner, BreakMode &mode) const;
   bigint break_beyond_threshold(int &tension, int &shear);
 };
 

@@ -492,13 +492,13 @@ PairLatticeBond::BondParams PairLatticeBond::bond_params(int i, int j) const
    of the tensile ratio Fn / (Kn Xb) = Xn / Xb and the shear ratio
    (Fs + mu_p Fn) / Fs0 (the Coulomb limit Fs <= Fs0 - mu_p Fn as a ratio;
    tensile_ratio and shear_ratio in lattice_bond_physics.h).  A bond breaks
-   when it exceeds 1.  mode: LB_BROKEN_TENSION or LB_BROKEN_SHEAR, the larger
-   one; 0 and LB_INTACT for other records
+   when it exceeds 1.  mode: BreakMode::Tension or BreakMode::Shear, the
+   larger one; ratio 0 and BreakMode::None for other records
 ------------------------------------------------------------------------- */
 
-PairLatticeBond::BondLoad PairLatticeBond::bond_load(int i, int s, int &mode) const
+PairLatticeBond::BondLoad PairLatticeBond::bond_load(int i, int s, BreakMode &mode) const
 {
-  mode = LB_INTACT;
+  mode = BreakMode::None;
   const int j = partner_idx ? partner_idx[(bigint) i * partner_stride + s] : -1;
   BondLoad load{bond_params(i, j >= 0 ? j : i), 0.0, 0.0, 0.0, 0.0};
   if (j < 0) return load;    // a broken bond whose particles are far apart
@@ -515,7 +515,7 @@ PairLatticeBond::BondLoad PairLatticeBond::bond_load(int i, int s, int &mode) co
   if (!intact) return load;
   const double tension = tensile_ratio(xn, p.xb);
   const double shear = shear_ratio(load.fs, p.mu_p, load.fn, p.fs0);
-  mode = (tension >= shear) ? LB_BROKEN_TENSION : LB_BROKEN_SHEAR;
+  mode = (tension >= shear) ? BreakMode::Tension : BreakMode::Shear;
   load.ratio = MAX(tension, shear);
   return load;
 }
@@ -536,10 +536,10 @@ bool PairLatticeBond::has_shear_springs() const
    the next force evaluation lets its springs go as the force loop does
 ------------------------------------------------------------------------- */
 
-void PairLatticeBond::break_record(int i, int s, int mode)
+void PairLatticeBond::break_record(int i, int s, BreakMode mode)
 {
   LatticeBondState &st = fix_store->states(i)[s];
-  if (st == LB_INTACT) st = (LatticeBondState) mode;
+  if (st == LB_INTACT && mode != BreakMode::None) st = broken_state(mode);
 }
 
 /* ----------------------------------------------------------------------
@@ -651,7 +651,7 @@ FixLatticeBondStore *PairLatticeBond::acquire_store()
     fix_store = dynamic_cast<FixLatticeBondStore *>(
         modify->add_fix(fmt::format("{} all LATTICE/BOND/STORE {}", store_id, maxslot)));
   if (!fix_store) error->all(FLERR, "pair_style lattice/bond could not create its record store");
-  if (fix_store->maxslot != maxslot) fix_store->set_maxslot(maxslot);
+  if (fix_store->maxslot() != maxslot) fix_store->set_maxslot(maxslot);
   return fix_store;
 }
 
@@ -709,7 +709,7 @@ template <typename Visit> void PairLatticeBond::for_each_owned_pair(Visit &&visi
 bool PairLatticeBond::has_record_with(int i, tagint partner) const
 {
   const tagint *pt = fix_store->partners(i);
-  for (int s = 0; s < fix_store->nrec[i]; s++)
+  for (int s = 0; s < fix_store->record_count(i); s++)
     if (pt[s] == partner) return true;
   return false;
 }
@@ -760,11 +760,11 @@ void PairLatticeBond::create_bonds()
     if (pass == 0) {
       int most = 0, most_all = 0;
       for (int i = 0; i < nlocal; i++) {
-        if (count[i] + fix_store->nrec[i] > fix_store->maxslot)
+        if (count[i] + fix_store->record_count(i) > fix_store->maxslot())
           error->one(FLERR, "Atom {} has more than maxslot = {} bonds and contacts ({}); increase "
-                     "the pair_style lattice/bond keyword maxslot", tag[i], fix_store->maxslot,
-                     count[i] + fix_store->nrec[i]);
-        most = MAX(most, count[i] + fix_store->nrec[i]);
+                     "the pair_style lattice/bond keyword maxslot", tag[i], fix_store->maxslot(),
+                     count[i] + fix_store->record_count(i));
+        most = MAX(most, count[i] + fix_store->record_count(i));
       }
       MPI_Allreduce(&most, &most_all, 1, MPI_INT, MPI_MAX, world);
       fix_store->fit_capacity(most_all);
@@ -772,7 +772,7 @@ void PairLatticeBond::create_bonds()
   }
   bigint nbond = 0;
   MPI_Allreduce(&nbond_local, &nbond, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  fix_store->bonds_created = 1;
+  fix_store->mark_bonds_created();
   // the exact room: contacts add more when they need it
   fix_store->fit_capacity(fix_store->global_max_records());
   int most_coord = 0, most_coord_all = 0;
@@ -782,16 +782,16 @@ void PairLatticeBond::create_bonds()
     const double mean = atom->natoms ? 2.0 * nbond / atom->natoms : 0.0;
     utils::logmesg(lmp, "pair_style lattice/bond: created {} bonds between {} particles (mean "
                    "coordination {:.3f}); room for {} records per particle, {:.2f} used on "
-                   "average\n", nbond, atom->natoms, mean, fix_store->capacity, 0.5 * mean);
+                   "average\n", nbond, atom->natoms, mean, fix_store->capacity(), 0.5 * mean);
     // each bond is stored on the lower ID: a numbering that is not row by row
     // (create_atoms with a multi-atom unit cell) gives some particles more
     // than half their bonds, and every particle that room
     const int balanced = (most_coord_all + 1) / 2;
-    if (fix_store->capacity > balanced)
+    if (fix_store->capacity() > balanced)
       utils::logmesg(lmp, "pair_style lattice/bond: the particle numbering gives some particles "
                      "{} records where {} would do; numbering them row by row (bonded-lattice "
                      "generate, or create_atoms with a one-atom primitive cell, 'lattice custom') "
-                     "saves memory and time (docs/performance.md)\n", fix_store->capacity,
+                     "saves memory and time (docs/performance.md)\n", fix_store->capacity(),
                      balanced);
   }
 }
@@ -847,9 +847,9 @@ void PairLatticeBond::refresh_partners()
   const double cutghost = comm->get_comm_cutoff();
   const double cutghost_sq = cutghost * cutghost;
 
-  if (atom->nmax > partner_nmax || partner_stride != fix_store->capacity) {
+  if (atom->nmax > partner_nmax || partner_stride != fix_store->capacity()) {
     partner_nmax = atom->nmax;
-    partner_stride = fix_store->capacity;
+    partner_stride = fix_store->capacity();
     memory->destroy(partner_idx);
     memory->create(partner_idx, (bigint) partner_nmax * partner_stride, "pair:partner_idx");
   }
@@ -871,7 +871,7 @@ void PairLatticeBond::refresh_partners()
     const LatticeBondState *st = fix_store->states(i);
     int *idx = partner_idx + (bigint) i * partner_stride;
     // walk downwards so that swap-with-last removal only moves visited records
-    for (int s = fix_store->nrec[i] - 1; s >= 0; s--) {
+    for (int s = fix_store->record_count(i) - 1; s >= 0; s--) {
       // records live on the lower ID: a partner ID at or below the owner's
       // means the IDs changed after the record was made
       if (pt[s] <= tag[i]) {
@@ -896,7 +896,7 @@ void PairLatticeBond::refresh_partners()
         drop = (st[s] == LB_CONTACT && rsq >= touch * touch);
       }
       if (drop) {
-        const int last = fix_store->nrec[i] - 1;
+        const int last = fix_store->record_count(i) - 1;
         fix_store->remove_record(i, s);
         if (s != last) idx[s] = idx[last];
       } else {
@@ -1071,9 +1071,9 @@ void PairLatticeBond::drop_record(int i, tagint partner)
 {
   const tagint *pt = fix_store->partners(i);
   int *idx = partner_idx + (bigint) i * partner_stride;
-  for (int s = 0; s < fix_store->nrec[i]; s++)
+  for (int s = 0; s < fix_store->record_count(i); s++)
     if (pt[s] == partner) {
-      const int last = fix_store->nrec[i] - 1;
+      const int last = fix_store->record_count(i) - 1;
       fix_store->remove_record(i, s);
       if (s != last) idx[s] = idx[last];
       if (hetero_flag) cache_bond_factors(i);
@@ -1111,7 +1111,7 @@ void PairLatticeBond::cache_bond_factors(int i)
   if (bond_factor.size() != need) bond_factor.assign(need, 1.0);
   const int *idx = partner_idx + (bigint) i * partner_stride;
   double *bf = bond_factor.data() + (size_t) i * partner_stride * 2;
-  for (int s = 0; s < fix_store->nrec[i]; s++) {
+  for (int s = 0; s < fix_store->record_count(i); s++) {
     const int j = idx[s];
     bf[2 * s] = (j >= 0) ? bond_stiffness_factor(i, j) : 1.0;
     bf[2 * s + 1] = (j >= 0) ? bond_strength_factor(i, j) : 1.0;
@@ -1128,11 +1128,11 @@ void PairLatticeBond::planar_springs_from_vectors()
 {
   double **x = atom->x;
   // the signed length goes to component 0; set_shear_layout keeps only it
-  const int nc = fix_store->ncomp;
+  const int nc = fix_store->spring_components();
   for (int i = 0; i < atom->nlocal; i++) {
     double *sp = fix_store->springs(i);
     const int *idx = partner_idx + (bigint) i * partner_stride;
-    for (int s = 0; s < fix_store->nrec[i]; s++) {
+    for (int s = 0; s < fix_store->record_count(i); s++) {
       double *sh = sp + s * nc;
       const double len = sqrt(sh[0] * sh[0] + sh[1] * sh[1] + sh[2] * sh[2]);
       const int j = idx[s];
@@ -1157,10 +1157,10 @@ void PairLatticeBond::planar_springs_from_vectors()
 
 bool PairLatticeBond::shear_vector(int i, int s, double *out) const
 {
-  const int nc = fix_store->ncomp;
+  const int nc = fix_store->spring_components();
   const double *sh = fix_store->springs(i) + s * nc;
   for (int k = 0; k < 3; k++) out[k] = (k < nc) ? sh[k] : 0.0;
-  if (fix_store->shear_layout != FixLatticeBondStore::SHEAR_PLANAR || sh[0] == 0.0) return true;
+  if (fix_store->shear_layout() != FixLatticeBondStore::SHEAR_PLANAR || sh[0] == 0.0) return true;
   const tagint partner = fix_store->partners(i)[s];
   int j = atom->map(partner);
   if (j >= 0) j = domain->closest_image(i, j);
@@ -1191,7 +1191,7 @@ void PairLatticeBond::detect_new_contacts()
     const double touch = radius[i] + radius[j];
     if (delx * delx + dely * dely + delz * delz < touch * touch) {
       const int s = fix_store->add_record(i, tag[j], LB_CONTACT);
-      if (fix_store->capacity != partner_stride) relayout_partners();
+      if (fix_store->capacity() != partner_stride) relayout_partners();
       partner_idx[(bigint) i * partner_stride + s] = j;
       if (hetero_flag) cache_bond_factors(i);
       cand_i[c] = cand_i.back();
@@ -1210,7 +1210,7 @@ void PairLatticeBond::detect_new_contacts()
 
 void PairLatticeBond::relayout_partners()
 {
-  const int stride = fix_store->capacity;
+  const int stride = fix_store->capacity();
   int *fresh = nullptr;
   memory->create(fresh, (bigint) partner_nmax * stride, "pair:partner_idx");
   const int nlocal = atom->nlocal;
@@ -1249,7 +1249,7 @@ void PairLatticeBond::check_time_step()
   stiffness_sum.assign(nall, 0.0);
   for (int i = 0; i < nlocal; i++) {
     const int *idx = partner_idx + (bigint) i * partner_stride;
-    for (int s = 0; s < fix_store->nrec[i]; s++) {
+    for (int s = 0; s < fix_store->record_count(i); s++) {
       const int j = idx[s];
       if (j < 0) continue;
       const BondParams p = bond_params(i, j);
@@ -1337,13 +1337,13 @@ void PairLatticeBond::compute(int eflag, int vflag)
   ev_init(eflag, vflag);
 
   bool rebuilt = (neighbor->ago == 0);
-  if (!fix_store->bonds_created) {
+  if (!fix_store->bonds_created()) {
     create_bonds();
     rebuilt = true;
   }
   // 2D records read from a bond file or an older restart file hold vectors
   const bool convert = domain->dimension == 2 &&
-      fix_store->shear_layout == FixLatticeBondStore::SHEAR_VECTOR;
+      fix_store->shear_layout() == FixLatticeBondStore::SHEAR_VECTOR;
   fetch_heterogeneity();
   if (rebuilt && hetero_flag) {
     // the ghosts' stiffness factors and grain IDs, once per reneighbouring
@@ -1361,9 +1361,9 @@ void PairLatticeBond::compute(int eflag, int vflag)
   // (a minimiser's line search may try long steps: no test there)
   const bool minimizing = (update->whichflag == 2);
   // (fix lattice/nve may have measured the steps already, testing them against step_limit)
-  fix_store->step_limit = STEP_LIMIT_FRACTION * min_radius;
+  fix_store->publish_step_limit(STEP_LIMIT_FRACTION * min_radius);
   const int runaway = fix_store->update_displacements(
-      (setup || minimizing) ? 0.0 : fix_store->step_limit);
+      (setup || minimizing) ? 0.0 : fix_store->step_limit());
   if (runaway >= 0) report_instability(runaway);
   comm_what = COMM_DISPLACEMENT;
   comm->forward_comm(this);
@@ -1476,7 +1476,7 @@ template <bool PLANAR> void PairLatticeBond::fit_sums_over_bonds()
   constexpr int NV = PLANAR ? FIT_VALUES_2D : FIT_VALUES_3D;
   const auto *const x = reinterpret_cast<const double(*)[3]>(atom->x[0]);
   const auto *const disp = reinterpret_cast<const double(*)[3]>(fix_store->displacements());
-  const int *const nrec = fix_store->nrec;
+  const int *const nrec = fix_store->record_counts();
   double *const sums = fit_sums.data();
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++) {
@@ -1679,7 +1679,7 @@ template <int F> void PairLatticeBond::eval()
   const double *const radius = atom->radius;
   const int *const type = atom->type;
   const int nlocal = atom->nlocal;
-  const int *const nrec = fix_store->nrec;
+  const int *const nrec = fix_store->record_counts();
   const auto *const disp = reinterpret_cast<const double(*)[3]>(fix_store->displacements());
   const int stride = partner_stride;
   const BondParams p_uniform = params[1][1];
@@ -1688,9 +1688,9 @@ template <int F> void PairLatticeBond::eval()
   const bool can_break = breaking_enabled;    // off while lattice/quasistatic relaxes
   // the springs: a signed length in 2D (compute() converts loaded vectors first)
   constexpr int NC = PLANAR ? 1 : 3;
-  if (fix_store->ncomp != NC)
+  if (fix_store->spring_components() != NC)
     error->one(FLERR, "pair_style lattice/bond: internal error: {} spring components, the loop "
-               "expects {}", fix_store->ncomp, NC);
+               "expects {}", fix_store->spring_components(), NC);
   double q_break_n = 0.0, q_break_s = 0.0, q_friction = 0.0;
   const bool prefetch = !PLANAR && sizeof(double) * NC * stride * (double) nlocal >= PREFETCH_MIN_BYTES;
 
@@ -1956,7 +1956,6 @@ template <int F> void PairLatticeBond::eval()
 
 int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
 {
-  const double *disp = fix_store->displacements();
   const int dim = domain->dimension;    // 2D: the force loop reads x and y only
   int m = 0;
   if (comm_what == COMM_SPIN) {    // the rotations (2D: about z only)
@@ -1972,6 +1971,7 @@ int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int pbc_fl
     }
     return m;
   }
+  const double *disp = fix_store->displacements();
   const FixLatticeBondStore::BoxStep &box = fix_store->box_step();
   if (pbc_flag && box.moved) {
     double shift[3];
@@ -1989,7 +1989,6 @@ int PairLatticeBond::pack_forward_comm(int n, int *list, double *buf, int pbc_fl
 
 void PairLatticeBond::unpack_forward_comm(int n, int first, double *buf)
 {
-  double *disp = fix_store->displacements();
   const int dim = domain->dimension;
   int m = 0;
   if (comm_what == COMM_SPIN) {
@@ -2006,6 +2005,7 @@ void PairLatticeBond::unpack_forward_comm(int n, int first, double *buf)
     }
     return;
   }
+  double *disp = fix_store->displacements();
   for (int i = first; i < first + n; i++)
     for (int c = 0; c < dim; c++) disp[3 * i + c] = buf[m++];
 }
@@ -2024,7 +2024,7 @@ double PairLatticeBond::local_elastic_energy() const
   for (int i = 0; i < atom->nlocal; i++) {
     const LatticeBondState *st = fix_store->states(i);
     const int *idx = partner_idx + (bigint) i * partner_stride;
-    for (int s = 0; s < fix_store->nrec[i]; s++) {
+    for (int s = 0; s < fix_store->record_count(i); s++) {
       const int j = idx[s];
       if (j < 0) continue;
       const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];

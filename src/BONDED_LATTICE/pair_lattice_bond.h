@@ -17,6 +17,7 @@ PairStyle(lattice/bond,PairLatticeBond);
 #ifndef LMP_PAIR_LATTICE_BOND_H
 #define LMP_PAIR_LATTICE_BOND_H
 
+#include "lattice_energy_source.h"
 #include "pair.h"
 
 #include <array>
@@ -27,8 +28,9 @@ PairStyle(lattice/bond,PairLatticeBond);
 namespace LAMMPS_NS {
 
 class FixLatticeBondStore;
+enum class BreakMode : unsigned char;    // fix_lattice_bond_store.h
 
-class PairLatticeBond : public Pair {
+class PairLatticeBond : public Pair, public LatticeEnergySource {
  public:
   PairLatticeBond(class LAMMPS *);
   ~PairLatticeBond() override;
@@ -75,17 +77,29 @@ class PairLatticeBond : public Pair {
   bool shear_vector(int i, int s, double *out) const;
   int partner_index_stride() const { return partner_stride; }
 
-  // energy accounting (compute lattice/energy): heat released on this rank
-  // since the pair style was created, [0] breaking (normal springs),
-  // [1] breaking (shear springs), [2] friction; tallied only while enabled
-  const double *heat_tallies() const { return heat; }
-  void enable_tallies(int flag) { tally_flag = flag; }
+  // energy accounting (LatticeEnergySource): heat released on this rank since
+  // the pair style was created, by breaking (normal springs: BREAK_NORMAL,
+  // shear springs: BREAK_SHEAR) and friction (FRICTION), tallied only while
+  // enabled; the records' elastic energy (local_elastic_energy on this rank)
+  void enable_energy_tallies(bool on) override { tally_flag = on ? 1 : 0; }
+  void add_energy_tallies(double *tally) const override
+  {
+    tally[BREAK_NORMAL] += heat[0];
+    tally[BREAK_SHEAR] += heat[1];
+    tally[FRICTION] += heat[2];
+  }
+  double elastic_energy() override
+  {
+    double local = local_elastic_energy(), all = 0.0;
+    MPI_Allreduce(&local, &all, 1, MPI_DOUBLE, MPI_SUM, world);
+    return all;
+  }
   double local_elastic_energy() const;
 
   // quasi-static loading (command lattice/quasistatic): breaking is switched
   // off while it relaxes; it breaks the most over-stressed bonds itself
   void enable_breaking(bool flag) { breaking_enabled = flag; }
-  double break_ratio(int i, int s, int &mode) const { return bond_load(i, s, mode).ratio; }
+  double break_ratio(int i, int s, BreakMode &mode) const { return bond_load(i, s, mode).ratio; }
   // record s of local atom i at the current positions: its parameters, length,
   // normal force (tension positive; 0 while an unbonded or broken pair is apart),
   // shear force and ratio to its breaking threshold (see break_ratio)
@@ -93,8 +107,9 @@ class PairLatticeBond : public Pair {
     BondParams p;
     double dist, fn, fs, ratio;
   };
-  BondLoad bond_load(int i, int s, int &mode) const;
-  void break_record(int i, int s, int mode);
+  BondLoad bond_load(int i, int s, BreakMode &mode) const;
+  // an intact record breaks in the given mode (nothing for BreakMode::None)
+  void break_record(int i, int s, BreakMode mode);
   bool has_shear_springs() const;    // some type pair has Ks > 0
   double smallest_radius() const { return min_radius; }
 
@@ -142,7 +157,7 @@ class PairLatticeBond : public Pair {
   int any_friction;                   // 1 if some type pair has mu_p > 0
   int uniform_params;                 // 1 if all type pairs have the same parameters
   int tally_flag;                     // 1: accumulate heat (compute lattice/energy)
-  double heat[3];                     // see heat_tallies()
+  double heat[3];                     // see add_energy_tallies()
   // shear_frame corotational: each particle's rotation increment this step
   // (local and ghost atoms), fitted by local_rotations()
   double **spin;
