@@ -518,9 +518,9 @@ void LatticeBondRecords::planar_springs_from_vectors()
       const int j = idx[s];
       double sig = 0.0;
       if (j >= 0 && len > 0.0) {
-        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1];
+        const PairSeparation d = pair_separation(x, i, j);
         // sign of s . t with t = (-dy, dx) / r: the length r does not matter
-        sig = (dx * sh[1] - dy * sh[0] >= 0.0) ? len : -len;
+        sig = (d.dx * sh[1] - d.dy * sh[0] >= 0.0) ? len : -len;
       }
       sh[0] = sig;
     }

@@ -117,11 +117,10 @@ bool PairLatticeBond::shear_vector(int i, int s, double *out) const
   int j = atom->map(partner);
   if (j >= 0) j = domain->closest_image(i, j);
   if (j < 0 || atom->tag[j] != partner) return false;
-  double **x = atom->x;
-  const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1];
-  const double rinv = 1.0 / sqrt(dx * dx + dy * dy);
-  out[0] = -sh[0] * dy * rinv;
-  out[1] = sh[0] * dx * rinv;
+  const PairSeparation d = pair_separation(atom->x, i, j);
+  const double rinv = 1.0 / sqrt(d.dx * d.dx + d.dy * d.dy);    // 2D: in the plane
+  out[0] = -sh[0] * d.dy * rinv;
+  out[1] = sh[0] * d.dx * rinv;
   out[2] = 0.0;
   return true;
 }
