@@ -18,6 +18,7 @@
 #include "error.h"
 #include "fix_lattice_bond_store.h"
 #include "force.h"
+#include "lattice_bond_geometry.h"
 #include "memory.h"
 #include "pair_lattice_bond.h"
 #include "update.h"
@@ -99,9 +100,7 @@ void ComputeLatticeBonds::compute_vector()
         // a broken bond or unbonded pair is an active contact while it overlaps
         const int j = idx[(bigint) i * stride + s];
         if (j < 0) continue;
-        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-        const double touch = radius[i] + radius[j];
-        if (dx * dx + dy * dy + dz * dz < touch * touch) local[3] += 1.0;
+        if (pair_touches(pair_separation(x, i, j), radius.touch(i, j))) local[3] += 1.0;
       }
     }
   }

@@ -35,6 +35,15 @@
 #define LB_PHYSICS_INLINE inline __attribute__((always_inline))
 
 namespace LAMMPS_NS {
+
+// the parameters of a record (SI: N/m, N/m, m, N, -): normal and shear
+// stiffness, tensile breaking stretch, shear strength, friction coefficient;
+// a type pair's (pair_coeff), scaled per bond in heterogeneous rock
+// (scaled_params in lattice_heterogeneity.h)
+struct LatticeBondParams {
+  double kn, ks, xb, fs0, mu_p;
+};
+
 namespace LatticeBondPhysics {
 
 // the shear ratio of a bond without shear strength (Fs0 = 0) that is loaded

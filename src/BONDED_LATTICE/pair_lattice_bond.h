@@ -17,20 +17,32 @@ PairStyle(lattice/bond,PairLatticeBond);
 #ifndef LMP_PAIR_LATTICE_BOND_H
 #define LMP_PAIR_LATTICE_BOND_H
 
+#include "lattice_bond_geometry.h"
+#include "lattice_bond_physics.h"
+#include "lattice_comm.h"
 #include "lattice_energy_source.h"
 #include "pair.h"
 
 #include <array>
 #include <string>
 #include <utility>
-#include <vector>
 
 namespace LAMMPS_NS {
 
 class FixLatticeBondStore;
 enum class BreakMode : unsigned char;    // fix_lattice_bond_store.h
+class LatticeBondRecords;
+class LatticeHeterogeneity;
+class LatticeRotationFit;
+class LatticeTimeStep;
 
-class PairLatticeBond : public Pair, public LatticeEnergySource {
+// The pair style keeps the settings, the coefficients, init, compute and
+// restart; its parts (each with its own file) are the records' lifecycle
+// (LatticeBondRecords), heterogeneous rock (LatticeHeterogeneity), the
+// corotational rotation fit (LatticeRotationFit) and the time-step check
+// (LatticeTimeStep); the force loop is pair_lattice_bond_kernel.cpp, the
+// query API for other styles pair_lattice_bond_query.cpp
+class PairLatticeBond : public Pair, public LatticeCommCarrier, public LatticeEnergySource {
  public:
   PairLatticeBond(class LAMMPS *);
   ~PairLatticeBond() override;
@@ -50,32 +62,27 @@ class PairLatticeBond : public Pair, public LatticeEnergySource {
   void unpack_forward_comm(int, int, double *) override;
   int pack_reverse_comm(int, int, double *) override;
   void unpack_reverse_comm(int, int *, double *) override;
+  void carry_forward(LatticeForwardPart *part) override;
+  void carry_reverse(LatticeReversePart *part) override;
+
+  // ---- query API for other styles (pair_lattice_bond_query.cpp) ----
 
   // bond parameters of one type pair (SI: N/m, N/m, m, N, -)
-  struct BondParams {
-    double kn, ks, xb, fs0, mu_p;
-  };
+  using BondParams = LatticeBondParams;
   // the parameters of the bond (or contact) between local or ghost atoms i
   // and j: their type pair's, scaled by the heterogeneity keywords if given
   BondParams bond_params(int i, int j) const;
-  // heterogeneity (keywords stiffness, grain, strength, seed): the bond's
-  // stiffness factor (mean of the particles' factors) and strength factor
-  // (uniform in [strength_min, strength_max] from a hash of seed and tags,
-  // times boundary_strength across grain boundaries)
-  bool heterogeneous() const { return hetero_flag; }
-  double bond_stiffness_factor(int i, int j) const;
-  double bond_strength_factor(int i, int j) const;
 
   FixLatticeBondStore *store() const { return fix_store; }
   FixLatticeBondStore *acquire_store();    // find or create the record store
   void ensure_atom_map();                  // a tag -> index map, created if absent
   // local/ghost index of each record's partner, -1 if absent: record s of
   // atom i at partner_index()[i * partner_index_stride() + s]
-  const int *partner_index() const { return partner_idx; }
+  const int *partner_index() const;
+  int partner_index_stride() const;
   // shear spring of record s of local atom i as a vector (2D stores a signed
   // length); false if a loaded 2D spring's partner is not on this rank
   bool shear_vector(int i, int s, double *out) const;
-  int partner_index_stride() const { return partner_stride; }
 
   // energy accounting (LatticeEnergySource): heat released on this rank since
   // the pair style was created, by breaking (normal springs: BREAK_NORMAL,
@@ -113,14 +120,9 @@ class PairLatticeBond : public Pair, public LatticeEnergySource {
   bool has_shear_springs() const;    // some type pair has Ks > 0
   double smallest_radius() const { return min_radius; }
 
-  // the particles' radii: per atom (atom_style sphere), or D/2 for all with the
-  // keyword diameter D (atom styles without per-atom radius).  Loops fetch radii()
-  // once: the pointer test inside is then the same for every particle
-  struct Radii {
-    const double *per_atom;    // atom->radius, or nullptr
-    double all;                // every particle's radius when per_atom is null
-    double operator[](int i) const { return per_atom ? per_atom[i] : all; }
-  };
+  // the particles' radii (see LatticeRadii): per atom, or D/2 for all with the
+  // keyword diameter D
+  using Radii = LatticeRadii;
   Radii radii() const;
   double uniform_diameter() const { return diameter; }    // keyword diameter, 0 if not given
 
@@ -141,16 +143,18 @@ class PairLatticeBond : public Pair, public LatticeEnergySource {
   std::string store_id;
   FixLatticeBondStore *fix_store;
 
-  int *partner_idx;    // local index of each record's partner, refreshed after reneighbouring
-  int partner_nmax;
-  int partner_stride;  // records per atom in partner_idx (the store's capacity)
-  int own_map;                        // 1 if this style created the atom map
+  // the parts
+  LatticeHeterogeneity *hetero;       // keywords stiffness, grain, strength, seed
+  LatticeTimeStep *time_step;         // critical time step, instability stop
+  LatticeBondRecords *records;        // record lifecycle and the partner index
+  LatticeRotationFit *rotation_fit;   // shear_frame corotational
+  // the part whose values LAMMPS communicates now; null: the step's displacements
+  LatticeForwardPart *forward_part;
+  LatticeReversePart *reverse_part;
+
   double min_radius;                  // smallest particle radius (instability test)
   double equal_radius;                // the radius if all particles have it, else 0
   double measure_radii();    // largest radius; sets min_radius, equal_radius
-  double dt_critical;                 // see check_time_step()
-  std::vector<double> stiffness_sum;  // per particle, for check_time_step()
-  std::vector<int> cand_i, cand_j;    // unbonded pairs that may come into contact
   // physics used by the type pairs (init_style): selects the compiled force loop
   enum { SHEAR_PAIRS_NONE, SHEAR_PAIRS_SOME, SHEAR_PAIRS_ALL };
   int shear_pairs;                    // how many type pairs have Ks > 0
@@ -158,74 +162,16 @@ class PairLatticeBond : public Pair, public LatticeEnergySource {
   int uniform_params;                 // 1 if all type pairs have the same parameters
   int tally_flag;                     // 1: accumulate heat (compute lattice/energy)
   double heat[3];                     // see add_energy_tallies()
-  // shear_frame corotational: each particle's rotation increment this step
-  // (local and ghost atoms), fitted by local_rotations()
-  double **spin;
-  int spin_nmax;
-  std::vector<double> fit_sums;       // per particle: the sums of the fit (see local_rotations)
-  int fit_values;                     // values per particle in fit_sums
-  // what forward/reverse communication carries
-  enum { COMM_DISPLACEMENT, COMM_SPIN, COMM_STIFFNESS, COMM_FIT, COMM_HETERO };
-  int comm_what;
-
-  // heterogeneity keywords (docs/pair_lattice_bond.rst, "Heterogeneous rock")
-  int hetero_flag;                    // 1 if any of them is given
-  std::string stiffness_name;         // per-particle stiffness factor, d_ property or ""
-  std::string grain_name;             // per-particle grain ID, i_ property or ""
-  double strength_min, strength_max;  // per-bond strength factor range
-  double boundary_strength;           // strength factor of bonds between grains
-  bigint strength_seed;
-  int stiffness_index, grain_index;   // their indices among the custom properties, or -1
-  double *stiffness_factor;           // their arrays, fetched anew at every step (they move
-  int *grain_id;                      // when the atom arrays grow)
-  void find_heterogeneity();
-  void fetch_heterogeneity();
-  // each record's stiffness and strength factors, 2 per record with the stride of
-  // partner_idx, computed after every reneighbouring (the force loop then needs
-  // neither the hash nor the partner's properties)
-  std::vector<double> bond_factor;
-  void cache_bond_factors(int i);
   bool breaking_enabled;              // see enable_breaking()
 
   void allocate();
   void warn_data_file_has_no_bonds();
-  static bool owned_pair(int a, int b, int nlocal, const tagint *tag, int &i, int &j);
-  template <typename Visit> void for_each_owned_pair(Visit &&visit);
-  bool has_record_with(int i, tagint partner) const;
-  void create_bonds();
-  void refresh_partners();
-  // records refresh_partners() could not use, judged together after its loop
-  struct RecordTrouble {
-    enum Kind { RENUMBERED, TOO_LONG, BEYOND, GONE, NKIND };
-    bigint count[NKIND] = {0, 0, 0, 0};
-    // the first record of each kind: owner and partner IDs, length (TOO_LONG)
-    tagint owner[NKIND] = {0, 0, 0, 0}, partner[NKIND] = {0, 0, 0, 0};
-    double length[NKIND] = {0.0, 0.0, 0.0, 0.0};
-    // intact records whose partner is neither local nor a ghost: (owner index, partner ID)
-    std::vector<std::pair<int, tagint>> missing;
-    void note(int kind, tagint o, tagint p, double len)
-    {
-      if (count[kind]++ == 0) {
-        owner[kind] = o;
-        partner[kind] = p;
-        length[kind] = len;
-      }
-    }
-  };
-  void settle_record_trouble(RecordTrouble &trouble, const bigint *counts_all, double cutghost);
-  void drop_record(int i, tagint partner);
-  void error_from_any_rank(bool mine, const std::string &message);
   void check_plane();
-  void check_overlap(int i, int j, double rsq, bool bondable_pair);
-  void detect_new_contacts();
-  void relayout_partners();
-  void planar_springs_from_vectors();
-  void check_time_step();
+  void refresh_partners();
   bool corotational() const;          // the shear_frame corotational pre-pass runs this step
-  void local_rotations();
-  template <bool PLANAR> void fit_sums_over_bonds();
-  [[noreturn]] void report_instability(int i);
-  // compile-time features of the force loop (bits of its template argument)
+
+  // the force loop (pair_lattice_bond_kernel.cpp): compile-time features
+  // (bits of its template argument)
   enum EvalFeature {
     LB_EV = 1,            // energy / virial tallies (thermo steps)
     LB_TALLY = 2,         // heat tallies of compute lattice/energy
@@ -239,8 +185,11 @@ class PairLatticeBond : public Pair, public LatticeEnergySource {
     LB_HETERO = 512,      // per-bond stiffness and strength factors (heterogeneous rock)
     LB_NFEATURES = 1024
   };
+  // the largest maxslot: the force loop keeps per-record scratch of this size
+  static constexpr int MAX_RECORDS = 64;
   using EvalFn = void (PairLatticeBond::*)();
   int scene_features() const;
+  void run_force_loop();    // the loop compiled for scene_features()
   template <int F> void eval();
   template <int F> static constexpr EvalFn eval_entry();
   template <std::size_t... I>
