@@ -79,18 +79,23 @@ int PairLatticeBond::scene_features() const
    (thermo output), and the combination that never occurs (both shear bits),
    use the general loop (for equal particles with the keyword diameter, which
    leaves no per-atom radius to read); heat tallies are specialised like plain
-   steps */
+   steps.  Without shear springs contact friction changes nothing in the loop
+   (FRICTION only selects the sliding of a spring), so those entries share the
+   frictionless loop.  Every bit, made a runtime branch, cost the loop over 1%
+   in 2D or 3D (docs/design.md, "What each template parameter is worth") */
 
 template <int F> constexpr PairLatticeBond::EvalFn PairLatticeBond::eval_entry()
 {
+  // a step without energy/virial tallies: friction matters only with shear springs
+  constexpr int PLAIN = (F & (LB_SHEAR_ALL | LB_SHEAR_SOME)) ? F : (F & ~LB_FRICTION);
   constexpr int GENERAL = LB_SHEAR_SOME | LB_FRICTION |
       (F & (LB_EV | LB_TALLY | LB_PLANAR | LB_COROTATE | LB_HETERO | LB_EQUAL));
   constexpr bool both_shear = (F & LB_SHEAR_ALL) && (F & LB_SHEAR_SOME);
   // without shear springs there is nothing to corotate (corotational() is false)
   constexpr bool idle_corotate = (F & LB_COROTATE) && !(F & (LB_SHEAR_ALL | LB_SHEAR_SOME | LB_EV));
   if constexpr ((F & LB_EV) || both_shear) return &PairLatticeBond::eval<GENERAL>;
-  else if constexpr (idle_corotate) return &PairLatticeBond::eval<F & ~LB_COROTATE>;
-  else return &PairLatticeBond::eval<F>;
+  else if constexpr (idle_corotate) return &PairLatticeBond::eval<PLAIN & ~LB_COROTATE>;
+  else return &PairLatticeBond::eval<PLAIN>;
 }
 
 template <std::size_t... I>
