@@ -22,8 +22,8 @@ from bonded_lattice.runner import RunResult
 
 from .materials import D, QUARTZ_2D, QUARTZ_MASS
 
-__all__ = ["atoms_at", "block_2d_deck", "lattice_block", "opening", "pair_lines",
-           "patchy_grains", "run_deck", "sphere_props"]
+__all__ = ["SHAKE", "TOUCHING_TRIANGLE", "atoms_at", "block_2d_deck", "lattice_block", "opening", "pair_lines",
+           "patchy_grains", "run_deck", "shaken_block", "sphere_props"]
 
 
 def run_deck(script: str, workdir: Path, np: int = 1, name: str = "in.test",
@@ -70,6 +70,10 @@ def atoms_at(positions: Iterable[tuple[float, ...]], types: Iterable[int] | None
     tail = f" {units}" if units else ""
     return "".join(f"create_atoms    {t} single {' '.join(str(c) for c in (*xyz, 0)[:3])}{tail}\n"
                    for t, xyz in zip(types, positions))
+
+
+TOUCHING_TRIANGLE = atoms_at([(0, 0), (0.001, 0), (0.0005, 0.000866025403784)], types=[1, 1, 2])
+"""Three touching 1 mm particles (types 1, 1, 2) at the origin, for decks that check input."""
 
 
 def sphere_props(diameter: float = D, mass: float = QUARTZ_MASS[2], which: str = "atom *") -> str:
@@ -150,4 +154,35 @@ variable        gid atom floor(x/{size})+{per_row}*floor(y/{size})
 variable        sf atom 1.0+{amplitude}*sin(v_gid*{rate})
 set             atom * i_grain v_gid
 set             atom * d_stiff v_sf
+"""
+
+
+# random velocities on a simple shear: bonds break in tension and in shear, fragments collide
+# (new contacts with friction); format with v (m/s), rate (1/s), mid (y of no shear
+# velocity, m) and vz ('v_vz' in 3D, 'NULL' in 2D)
+SHAKE = """
+variable        vx atom {v}*normal(0,1,4931)+{rate}*(y-{mid})
+variable        vy atom {v}*normal(0,1,7253)
+variable        vz atom {v}*normal(0,1,1197)
+velocity        all set v_vx v_vy {vz} units box
+"""
+
+
+def shaken_block(dim: int) -> str:
+    """The block of the shaken scenes (tests of the compiled loop variants and of
+    fix lattice/nve): 12 x 10 (2D) or 6 x 6 x 6 (3D) lattice units of 1 mm particles,
+    two atom types, and the group 'half' (the lower half of the IDs); no pair style yet."""
+    if dim == 2:
+        block = lattice_block(2, "-4 16 -4 14", "0 12 0 10", types=2) + (
+            f"create_atoms    1 region block\nset             type 1 mass {QUARTZ_MASS[2]!r}\n")
+    else:
+        block = lattice_block(3, "-4 10 -4 10 -4 10", "0 6 0 6 0 6", types=2) + (
+            "create_atoms    1 region block\nset             type 1 mass 3.747e-6\n")
+    return f"""
+units           si
+atom_style      sphere
+newton          on
+{block}
+set             type 1 diameter {D}
+group           half id <= $(floor(count(all)/2))
 """

@@ -15,14 +15,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from bonded_lattice.io import read_atom_dump
-from helpers.decks import lattice_block, run_deck
+from helpers.decks import TOUCHING_TRIANGLE, lattice_block, opening, run_deck, sphere_props
+from helpers.materials import D, QUARTZ, QUARTZ_MASS, WEAK_SHEAR, coeffs
 
-D = 1.0e-3
-MASS = {2: 2.295e-3, 3: 3.747e-6}
-# quartz bond parameters (2D per metre of thickness, 3D) with a third of the
-# shear strength, so that bonds fail in shear as well as in tension
-COEFFS = {2: "6.5874e10 2.3715e10 1.9011e-7 1.1e4 0.23915",
-          3: "4.6794e7 8.0679e6 1.7037e-7 5.5 0.39645"}
+MASS = {2: QUARTZ_MASS[2], 3: 3.747e-6}
+# quartz with 0.3 of the shear strength (helpers.materials), so that bonds fail in shear as
+# well as in tension
+COEFFS = {dim: coeffs(WEAK_SHEAR[dim]) for dim in (2, 3)}
 WALL_KN = {2: 1.3e11, 3: 9.4e7}
 
 LATTICE = {2: lattice_block(2, "-4 16 -4 14", "0 12 0 10", types=2),
@@ -211,22 +210,15 @@ run             200
     assert np.max(np.abs(x - x_ref)) < 1e-9 * D
 
 
-HEAD = """
-units si
-dimension 2
-boundary f f p
-atom_style {style}
-newton on
-region box block -0.01 0.01 -0.01 0.01 -0.001 0.001
-create_box 2 box
-create_atoms 1 single 0 0 0
-create_atoms 1 single 0.001 0 0
-create_atoms 2 single 0.0005 0.000866025403784 0
-"""
+def head(style: str) -> str:
+    """The opening of the error decks: three touching particles, atom_style ``style``."""
+    return opening(types=2, atom_style=style) + TOUCHING_TRIANGLE
+
+
 GOOD = COEFFS[2]
 TAIL = "pair_coeff * * " + GOOD + "\nfix 1 all lattice/nve\ntimestep 1e-8\nrun 10\n"
 ATOMIC_MASSES = "mass * 2.295e-3\n"
-SPHERE_SETUP = "set atom * diameter 0.001\nset atom * mass 2.295e-3\n"
+SPHERE_SETUP = sphere_props()
 
 ERRORS = {
     "atomic without diameter": ("atomic", ATOMIC_MASSES + "pair_style lattice/bond\n" + TAIL,
@@ -253,7 +245,7 @@ ERRORS = {
 @pytest.mark.parametrize("name", list(ERRORS))
 def test_atomic_style_errors_name_the_fix(tmp_path, name):
     style, body, expected = ERRORS[name]
-    res = run_deck(HEAD.format(style=style) + body, tmp_path)
+    res = run_deck(head(style) + body, tmp_path)
     assert res.returncode != 0, f"{name}: the run did not stop\n{res.output[-1500:]}"
     for fragment in expected:
         assert fragment in res.output, f"{name}: {fragment!r} missing in\n{res.output[-1500:]}"
@@ -307,13 +299,11 @@ run             0
 
 def test_atomic_decks_and_scenes():
     """decks and scenes write atom_style atomic decks on request; sphere stays the default."""
-    from bonded_lattice.conversion import BondParameters
     from bonded_lattice.decks import DeckSpec, deck_text
     from bonded_lattice.scenes import Scene
     from bonded_lattice.scenes import deck_text as scene_deck
 
-    spec = DeckSpec(test="compression", dim=2, d=D, bond=BondParameters(6.5874e10, 2.3715e10,
-                    1.9011e-7, 3.6905e4, 0.23915), data_file="data.lattice", area=1e-2,
+    spec = DeckSpec(test="compression", dim=2, d=D, bond=QUARTZ[2], data_file="data.lattice", area=1e-2,
                     eta=1.0, speed=0.01, steps=10)
     sphere = deck_text(spec)
     atomic = deck_text(DeckSpec(**{**spec.__dict__, "atom_style": "atomic"}))

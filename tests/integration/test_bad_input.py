@@ -3,11 +3,9 @@
 from __future__ import annotations
 
 import pytest
-from helpers.decks import atoms_at, opening, pair_lines, run_deck, sphere_props
+from helpers.decks import TOUCHING_TRIANGLE, atoms_at, opening, pair_lines, run_deck, sphere_props
 from helpers.materials import QUARTZ, QUARTZ_2D, coeffs
 
-# three touching particles (types 1, 1, 2) of 1 mm
-TRIANGLE = atoms_at([(0, 0), (0.001, 0), (0.0005, 0.000866025403784)], types=[1, 1, 2])
 SPHERE = sphere_props()
 GOOD = QUARTZ_2D
 TAIL = "fix 1 all nve\ntimestep 1e-8\nrun 10\n"
@@ -15,7 +13,7 @@ TAIL = "fix 1 all nve\ntimestep 1e-8\nrun 10\n"
 
 def deck(pair_lines: str, atom_style: str = "sphere", newton: str = "on", extra: str = "",
          setup: str = SPHERE) -> str:
-    return (opening(types=2, atom_style=atom_style, newton=newton) + TRIANGLE + setup
+    return (opening(types=2, atom_style=atom_style, newton=newton) + TOUCHING_TRIANGLE + setup
             + pair_lines + extra + TAIL)
 
 

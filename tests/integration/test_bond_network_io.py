@@ -10,11 +10,11 @@ import re
 import numpy as np
 import pytest
 from bonded_lattice.io import read_atom_dump
-from helpers.decks import block_2d_deck, run_deck
-from helpers.materials import QUARTZ_2D
+from helpers.decks import block_2d_deck, opening, run_deck
+from helpers.materials import QUARTZ_2D, WEAK_SHEAR, coeffs
 
-# a third of the quartz shear strength, so that bonds also fail in shear
-COEFFS = "6.5874e10 2.3715e10 1.9011e-7 1.1e4 0.23915"
+# quartz with 0.3 of the shear strength (helpers.materials), so that bonds also fail in shear
+COEFFS = coeffs(WEAK_SHEAR[2])
 SHAKE = """
 variable        vx atom 0.3*normal(0,1,4931)+300*(y-3e-3)
 variable        vy atom 0.3*normal(0,1,7253)
@@ -32,12 +32,7 @@ write_data      state.data
 run             400
 write_dump      all custom final.dump id x y vx vy modify sort id format float %.17g
 """
-RESUMED = """
-units           si
-dimension       2
-boundary        f f p
-atom_style      sphere
-newton          on
+RESUMED = opening(box=None) + """\
 pair_style      lattice/bond
 read_data       {dir}/state.data
 read_lattice_bonds {dir}/network.txt

@@ -3,9 +3,8 @@
 from __future__ import annotations
 
 import pytest
-
-D = 1.0e-3
-QUARTZ_2D = "6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915"
+from helpers.decks import atoms_at, opening, pair_lines, run_deck, sphere_props
+from helpers.materials import D, QUARTZ, QUARTZ_2D, coeffs
 
 
 def counts(lmp) -> list[float]:
@@ -15,21 +14,10 @@ def counts(lmp) -> list[float]:
     return list(lmp.numpy.extract_compute("b", LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR))
 
 
-def two_particles(lmp, gap: float, tolerance: str = "", coeffs: str = QUARTZ_2D) -> None:
-    lmp.commands_string(f"""
-units si
-dimension 2
-boundary f f p
-atom_style sphere
-newton on
-region box block -0.01 0.01 -0.01 0.01 -0.001 0.001
-create_box 1 box
-create_atoms 1 single 0 0 0 units box
-create_atoms 1 single {D + gap} 0 0 units box
-set atom * diameter {D}
-set atom * mass 2.295e-3
-pair_style lattice/bond {tolerance}
-pair_coeff 1 1 {coeffs}
+def two_particles(lmp, gap: float, tolerance: str = "", values: str = QUARTZ_2D) -> None:
+    """Two 1 mm particles ``gap`` apart, pair coefficients ``values``, after ``run 0``."""
+    lmp.commands_string(opening() + atoms_at([(0, 0), (D + gap, 0)], units="units box")
+                        + sphere_props() + pair_lines({"1 1": values}, tolerance) + """
 compute b all lattice/bonds
 thermo_style custom step c_b[1] c_b[2] c_b[3] c_b[4]
 fix 1 all nve
@@ -39,7 +27,7 @@ run 0
 
 # Xb = 1 mm, Fs0 huge, mu_p = 0: a bond made at a gap of 1e-5 m stays intact
 # (with quartz values the stretch breaks it at once: rest length is r_i + r_j)
-UNBREAKABLE = "6.5874e10 2.3715e10 1.0e-3 1.0e9 0.0"
+UNBREAKABLE = coeffs(QUARTZ[2], Xb=1.0e-3, Fs0=1.0e9, mu_p=0.0)
 
 
 @pytest.mark.parametrize("gap,tolerance,bonded", [
@@ -56,23 +44,11 @@ def test_bond_tolerance(lmp_instance, gap, tolerance, bonded):
 def test_bond_no_keeps_a_pre_cut_fault_unbonded(lmp_instance):
     # two hexagonal blocks, type 1 below y = 2.5 rows and type 2 above
     lmp = lmp_instance
-    lmp.commands_string(f"""
-units si
-dimension 2
-boundary f f p
-atom_style sphere
-newton on
-lattice hex {D}
-region box block -1 11 -1 6 -0.5 0.5
-create_box 2 box
+    lmp.commands_string(opening(lattice=f"hex {D}", box="-1 11 -1 6 -0.5 0.5", types=2) + """
 create_atoms 1 box
 region upper block INF INF 2.4 INF INF INF
 set region upper type 2
-set type * diameter {D}
-set type * mass 2.295e-3
-pair_style lattice/bond
-pair_coeff * * {QUARTZ_2D}
-pair_coeff 1 2 {QUARTZ_2D} bond no
+""" + sphere_props(which="type *") + pair_lines({"* *": QUARTZ_2D, "1 2": QUARTZ_2D + " bond no"}) + """
 compute b all lattice/bonds
 thermo_style custom step c_b[1] c_b[4]
 fix 1 all nve
@@ -136,25 +112,16 @@ NUMBERINGS = {
 def test_record_room_follows_the_numbering(tmp_path, dim, numbering):
     """The log states each particle's room for records (each bond is stored on the lower
     ID) and, for a numbering that wastes it, how much room a balanced one needs."""
-    from helpers.decks import run_deck
-
     lattice, room, hint = NUMBERINGS[(dim, numbering)]
     three = dim == "3d"
-    deck = f"""
-units           si
-dimension       {3 if three else 2}
-boundary        f f {"f" if three else "p"}
-atom_style      atomic
-newton          on
-lattice         {"fcc $(sqrt(2)*1e-3)" if three else "hex 1e-3"}
-region          box block -1 9 -1 9 {"-1 9" if three else "-0.5 0.5"}
-create_box      1 box
+    lattice_of = {"3d": "fcc $(sqrt(2)*1e-3)", "2d": "hex 1e-3"}
+    deck = opening(3 if three else 2, atom_style="atomic", lattice=lattice_of[dim],
+                   box=f"-1 9 -1 9 {'-1 9' if three else '-0.5 0.5'}") + f"""
 region          block block 0 7.9 0 7.9 {"0 7.9" if three else "-0.5 0.5"}
 {lattice}
 create_atoms    1 region block
 mass            1 1e-6
-pair_style      lattice/bond diameter 1e-3
-pair_coeff      1 1 {QUARTZ_2D}
+""" + pair_lines({"1 1": QUARTZ_2D}, f"diameter {D}") + """
 neighbor        1e-4 bin
 run             0
 """

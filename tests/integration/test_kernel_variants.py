@@ -11,49 +11,23 @@ these scenes (the option is active there)."""
 
 from __future__ import annotations
 
+from dataclasses import astuple
+
 import numpy as np
 import pytest
-from helpers.decks import lattice_block
+from helpers.decks import SHAKE, shaken_block
+from helpers.materials import D, WEAK_SHEAR
 
-D = 1.0e-3
-# quartz bond parameters (2D per metre of thickness, 3D; docs/theory.md) with a
-# third of the shear strength, so that bonds fail in shear as well as in tension
-KN2, KS2, XB2, FS2, MU2 = 6.5874e10, 2.3715e10, 1.9011e-7, 1.1e4, 0.23915
-KN3, KS3, XB3, FS3, MU3 = 4.6794e7, 8.0679e6, 1.7037e-7, 5.5, 0.39645
-
-LATTICE = {
-    2: lattice_block(2, "-4 16 -4 14", "0 12 0 10", types=2)
-    + "create_atoms    1 region block\nset             type 1 mass 2.295e-3\n",
-    3: lattice_block(3, "-4 10 -4 10 -4 10", "0 6 0 6 0 6", types=2)
-    + "create_atoms    1 region block\nset             type 1 mass 3.747e-6\n",
-}
-
-# random velocities on a simple shear: bonds break in tension and in shear,
-# fragments collide (new contacts with friction)
-SHAKE = """
-variable        vx atom {v}*normal(0,1,4931)+{rate}*(y-{mid})
-variable        vy atom {v}*normal(0,1,7253)
-variable        vz atom {v}*normal(0,1,1197)
-velocity        all set v_vx v_vy {vz} units box
-"""
-
-
-def scene_opening(dim: int) -> str:
-    """The block of a scene, with the group 'half' (the lower half of the IDs)."""
-    return f"""
-units           si
-atom_style      sphere
-newton          on
-{LATTICE[dim]}
-set             type 1 diameter {D}
-group           half id <= $(floor(count(all)/2))
-"""
+# quartz with 0.3 of the shear strength (helpers.materials), so that bonds fail in shear as
+# well as in tension
+KN2, KS2, XB2, FS2, MU2 = astuple(WEAK_SHEAR[2])
+KN3, KS3, XB3, FS3, MU3 = astuple(WEAK_SHEAR[3])
 
 
 def final_state(lmp, dim: int, coeffs: list[str], thermo_every: int, steps: int,
                 v: float, rate: float, energy: bool, extra: str = "",
                 style_args: str = "") -> tuple[np.ndarray, np.ndarray]:
-    lmp.commands_string(scene_opening(dim) + f"""
+    lmp.commands_string(shaken_block(dim) + f"""
 set             group half type 2
 {extra}
 pair_style      lattice/bond {style_args}

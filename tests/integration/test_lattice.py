@@ -21,15 +21,14 @@ from bonded_lattice.lattice import (
     pairs_within,
     write_data,
 )
+from helpers.decks import opening, pair_lines
+from helpers.materials import D, QUARTZ_2D, QUARTZ_3D, QUARTZ_MASS
 
-D = 1.0e-3
 PAPER_2D = {2: 3, 4: 18, 8: 68, 15: 247, 30: 1033, 60: 4106, 120: 16611}
 PAPER_3D = {2: 4, 4: 82, 6: 255, 8: 580, 10: 1105, 12: 2166, 16: 5461, 20: 10985, 24: 18079,
             30: 37681}
-# quartz, d = 1 mm (worked values of docs/theory.md)
-COEFF_2D = "pair_coeff * * 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915"
-COEFF_3D = "pair_coeff * * 4.6794e7 8.0679e6 1.7037e-7 18.452 0.39645"
-MASS_2D, MASS_3D = 2.295e-3, 1.874e-6
+# quartz, d = 1 mm
+COEFFS = {2: QUARTZ_2D, 3: QUARTZ_3D}
 
 
 def coordination(lat: Lattice) -> np.ndarray:
@@ -87,16 +86,9 @@ def test_2d_rows_alternate_n_and_n_minus_1(n_across):
 def test_2d_block_equals_lammps_hex_recipe(lmp_instance, n_across):
     """Same sites as `lattice hex d` + `region block -0.25 N-0.75 -0.25 N/sqrt(3)-0.2`."""
     lmp = lmp_instance
-    lmp.commands_string(f"""
-units si
-dimension 2
-boundary f f p
-atom_style sphere
-lattice hex {D!r}
-region r block -0.25 {n_across - 0.75} -0.25 {n_across / math.sqrt(3) - 0.2} -0.5 0.5
-create_box 1 r
-create_atoms 1 region r
-""")
+    lmp.commands_string(opening(lattice=f"hex {D!r}", box=f"-0.25 {n_across - 0.75} -0.25 "
+                                f"{n_across / math.sqrt(3) - 0.2} -0.5 0.5")
+                        + "create_atoms 1 region box\n")
     x = lmp.numpy.extract_atom("x")[: lmp.get_natoms()].copy()
     x = x[np.lexsort((x[:, 0], np.round(x[:, 1] / D * 1e6)))]
     lat = hex_block_2d(n_across, D)
@@ -271,14 +263,7 @@ def test_bad_input():
 # ---------------------------------------------------------------- data files read by LAMMPS
 
 def read_back(lmp, path, dim):
-    lmp.commands_string(f"""
-units si
-dimension {dim}
-boundary f f {"p" if dim == 2 else "f"}
-atom_style sphere
-newton on
-read_data {path}
-""")
+    lmp.commands_string(opening(dim, box=None) + f"read_data {path}\n")
     n = lmp.get_natoms()
     order = np.argsort(lmp.numpy.extract_atom("id")[:n])
     get = lambda name: np.array(lmp.numpy.extract_atom(name)[:n])[order]
@@ -298,7 +283,7 @@ def test_lammps_mass_convention_is_sphere_volume_in_2d_and_3d(lmp_instance, tmp_
 def test_data_file_read_by_lammps(lmp_instance, tmp_path, dim):
     lat = hex_block_2d(30, D, orientation=7.0) if dim == 2 else close_packed_block_3d(12, D)
     lat.types[::7] = 2
-    mass = MASS_2D if dim == 2 else MASS_3D
+    mass = QUARTZ_MASS[dim]
     path = tmp_path / "data.lattice"
     write_data(lat, path, mass, atom_types=3)
     n, x, radius, rmass, types = read_back(lmp_instance, path, dim)
@@ -323,11 +308,9 @@ def test_lammps_bonds_every_touching_pair(lmp_instance, tmp_path, dim, lat):
 
     lmp = lmp_instance
     path = tmp_path / "data.lattice"
-    write_data(lat, path, MASS_2D if dim == 2 else MASS_3D)
+    write_data(lat, path, QUARTZ_MASS[dim])
     read_back(lmp, path, dim)
-    lmp.commands_string(f"""
-pair_style lattice/bond
-{COEFF_2D if dim == 2 else COEFF_3D}
+    lmp.commands_string(pair_lines(COEFFS[dim]) + f"""
 neighbor {0.1 * D!r} bin
 compute b all lattice/bonds
 run 0

@@ -6,26 +6,14 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from helpers.decks import run_deck
+from bonded_lattice.io import read_atom_dump
+from helpers.decks import block_2d_deck, run_deck
+from helpers.materials import QUARTZ, coeffs
 
-D = 1.0e-3
-DECK = f"""
-units           si
-dimension       2
-boundary        p p p
-atom_style      sphere
-newton          on
-lattice         hex {D}
-region          box block 0 24 0 6 -0.5 0.5
-create_box      1 box
-region          block block 2 10 1 4 -0.5 0.5
-create_atoms    1 region block
+# quartz springs that never break (Xb 1 m, Fs0 1e9 N/m): the block only vibrates
+DECK = block_2d_deck("0 24 0 6", "2 10 1 4", boundary="p p p",
+                     coeffs=coeffs(QUARTZ[2], Xb=1.0, Fs0=1.0e9)) + """\
 reset_atoms     id sort yes
-set             type 1 diameter {D}
-set             type 1 mass 2.295e-3
-pair_style      lattice/bond
-pair_coeff      1 1 6.5874e10 2.3715e10 1.0 1.0e9 0.23915
-neighbor        {0.1 * D} bin
 # a random vibration of ~0.02 m/s (seeded per atom position, so it does not
 # depend on the rank count) plus a drift of one box length in the run
 velocity        all create 1.0e20 4928459 loop geom
@@ -42,9 +30,8 @@ write_dump      all custom final.dump id x y vx vy modify sort id format float %
 
 
 def read(path):
-    lines = path.read_text().splitlines()
-    start = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS")) + 1
-    return np.array([[float(v) for v in l.split()] for l in lines[start:]])
+    """The rows of a dump sorted by id: id x y vx vy."""
+    return read_atom_dump(path)[1]
 
 
 BALANCE = "fix             lb all balance 500 1.05 shift x 10 1.05\n"
@@ -84,7 +71,7 @@ def test_drift_around_periodic_box(tmp_path, np_, balance, frame, integrator):
     # the springs hardly stretch (energies at the round-off of the positions): compare
     # against a millionth of a millionth of one bond's breaking energy, Kn Xb^2 / 2
     np.testing.assert_allclose(tn["PotEng"], t1["PotEng"], rtol=1e-9,
-                               atol=1e-12 * 0.5 * 6.5874e10 * 1.9011e-7**2)
+                               atol=1e-12 * 0.5 * QUARTZ[2].Kn * QUARTZ[2].Xb**2)
     a, b = read(tmp_path / "one" / "final.dump"), read(tmp_path / "many" / "final.dump")
     assert np.array_equal(a[:, 0], b[:, 0])
     # positions (wrapped into the box) agree to round-off

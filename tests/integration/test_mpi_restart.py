@@ -8,6 +8,7 @@ crack crosses the block between steps ~4425 and ~4470.
 from __future__ import annotations
 
 import re
+from dataclasses import astuple
 from pathlib import Path
 
 import numpy as np
@@ -15,10 +16,12 @@ import pytest
 from bonded_lattice.io import read_atom_dump
 from helpers import DATA, INPUTS
 from helpers.decks import block_2d_deck, run_deck
+from helpers.materials import D, QUARTZ, QUARTZ_2D, QUARTZ_ROCK
 
 DECK = (INPUTS / "in.tension2d").read_text()
 DECK_ARGS = ["-var", "N", "15", "-var", "vpull", "0.02"]
-D = 1.0e-3  # particle diameter (m)
+# the deck's damping, computed as inputs/in.tension2d does: eta = sqrt(8 m Kn) / N, N = 15
+ETA = (8 * QUARTZ_ROCK.rho * np.sqrt(3) * D**2 / 2 * QUARTZ[2].Kn) ** 0.5 / 15
 
 
 def read_dump(path: Path) -> np.ndarray:
@@ -127,11 +130,10 @@ def test_restart_mid_fracture_continues_identically(tmp_path, np_write, np_read)
     final_broken = first.column("c_bonds[2]", run=1)[-1]
     assert 0 < broken_at_restart < final_broken, "restart must be written while the crack grows"
 
-    eta = (8 * 2650 * np.sqrt(3) * D**2 / 2 * 6.5874e10) ** 0.5 / 15
     # the resumed run reads the restart file written by the first one
     (tmp_path / "b").mkdir()
     (tmp_path / "b" / "restart.mid").write_bytes((tmp_path / "a" / "restart.mid").read_bytes())
-    resumed = run_deck(RESUME.format(eta=eta), tmp_path / "b", np=np_read)
+    resumed = run_deck(RESUME.format(eta=ETA), tmp_path / "b", np=np_read)
     assert resumed.returncode == 0, resumed.output[-3000:]
     assert "pair_style lattice/bond: created" not in resumed.output, "bonds must not be re-created"
 
@@ -155,7 +157,7 @@ def test_write_data_warns_and_keeps_coefficients(tmp_path):
     text = (tmp_path / "data.out").read_text()
     section = text.split("PairIJ Coeffs")[1].splitlines()
     coeffs = next(line for line in section if line.startswith("1 1 ")).split()
-    assert [float(v) for v in coeffs[2:]] == [6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915]
+    assert [float(v) for v in coeffs[2:]] == list(astuple(QUARTZ[2]))
 
 
 def skip_if_lammps_cannot_read(result) -> None:
@@ -177,7 +179,7 @@ def test_restart_of_the_first_record_format_is_rejected(tmp_path):
     data = DATA / "lattice_bond_format1.restart"
     deck = f"""
 read_restart    {data}
-pair_coeff      1 1 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915
+pair_coeff      1 1 {QUARTZ_2D}
 fix             nve all nve
 run             1
 """
@@ -204,7 +206,7 @@ def test_2d_restart_of_the_second_record_format_continues_the_run(tmp_path):
     data = DATA
     deck = f"""
 read_restart    {data / "lattice_bond_format2_2d.restart"}
-pair_coeff      * * 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915
+pair_coeff      * * {QUARTZ_2D}
 neighbor        1.0e-4 bin
 fix             nve all nve
 timestep        2e-8
@@ -300,7 +302,7 @@ write_restart   whole.restart
 """
 READ_BACK = """
 read_restart    {name}
-pair_coeff      1 1 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915
+pair_coeff      1 1 """ + QUARTZ_2D + """
 fix             nve all nve
 run             1
 """
@@ -394,9 +396,8 @@ def test_run_killed_with_sigkill_resumes_from_its_last_restart_file(tmp_path):
     assert (work / "ckpt.4500").exists(), \
         f"{cmd} ended with {proc.returncode}: " + (work / "mpirun.out").read_text()[-2000:]
 
-    eta = (8 * 2650 * np.sqrt(3) * D**2 / 2 * 6.5874e10) ** 0.5 / 15
     for start, stop in ((3000, 4000), (4500, 5400)):
-        resume = RESUME.format(eta=eta).replace("read_restart    restart.mid",
+        resume = RESUME.format(eta=ETA).replace("read_restart    restart.mid",
                                                 f"read_restart    {work}/ckpt.{start}")
         resume = resume.replace("run             1000", f"run             {stop} upto")
         res = run_deck(resume, tmp_path / f"from{start}", np=2)

@@ -14,6 +14,7 @@ import sys
 import textwrap
 
 from helpers.decks import block_2d_deck
+from helpers.materials import QUARTZ_2D
 
 # a valid 2D scene, then one command under test, then a run that initialises it
 SETUP = block_2d_deck("-2 8 -2 8", "0 5 0 4", types=2, coeffs=None) + """
@@ -21,13 +22,13 @@ variable        wpos equal -1.0e-3
 fix             nve all nve
 timestep        2.0e-8
 """
-PAIR = ("pair_style lattice/bond", "pair_coeff * * 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915")
+PAIR = ("pair_style lattice/bond", f"pair_coeff * * {QUARTZ_2D}")
 
 # the valid commands whose arguments are corrupted (index: the first word after the
 # style name, the first that may change)
 VALID = [
     ("pair_style lattice/bond tolerance 0.01 maxslot 16 cutoff 1.2e-3", 2),
-    ("pair_coeff 1 2 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915 bond no", 1),
+    (f"pair_coeff 1 2 {QUARTZ_2D} bond no", 1),
     ("fix damp all lattice/viscous 0.05", 4),
     ("fix wall all lattice/wall ylo -0.5e-3 1.3e11 0 0 vel 0.05", 4),
     ("fix wall all lattice/wall ylo v_wpos 1.3e11 1.0e11 0.3", 4),

@@ -6,10 +6,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from bonded_lattice.io import read_atom_dump
 from helpers.decks import run_deck
+from helpers.materials import D, QUARTZITE_3D
 
-D = 1.0e-3
-# quartzite in 3D (docs/theory.md): Kn Ks Xb Fs0 mu_p, mass rho*sqrt(2)*d^3/2
+# quartzite in 3D (helpers.materials): Kn Ks Xb Fs0 mu_p, mass rho*sqrt(2)*d^3/2
 DECK = f"""
 units           si
 dimension       3
@@ -26,7 +27,7 @@ reset_atoms     id sort yes
 set             type 1 diameter {D}
 set             type 1 mass $(2650*sqrt(2)*{D}^3/2)
 pair_style      lattice/bond
-pair_coeff      1 1 4.6794e7 8.0679e6 1.7037e-7 18.452 0.39645
+pair_coeff      1 1 {QUARTZITE_3D}
 neighbor        $(0.1*{D}) bin
 variable        zmin equal $(bound(all,zmin))
 variable        zmax equal $(bound(all,zmax))
@@ -64,10 +65,8 @@ def runs(tmp_path_factory):
 
 
 def read(path):
-    lines = path.read_text().splitlines()
-    start = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS")) + 1
-    data = np.array([[float(v) for v in l.split()] for l in lines[start:]])
-    return data[np.argsort(data[:, 0])]
+    """The rows of a dump sorted by id: id x y z c_peratom."""
+    return read_atom_dump(path)[1]
 
 
 @pytest.mark.mpi

@@ -1,6 +1,7 @@
 """The plugin is found by the lmp command and by the Python module without `plugin load`."""
 
 from bonded_lattice import __version__
+from helpers.decks import run_deck
 
 
 def test_python_module_has_styles(lmp_instance):
@@ -14,8 +15,6 @@ def test_python_module_has_styles(lmp_instance):
 
 
 def test_lmp_command_lists_version(tmp_path):
-    from helpers.decks import run_deck
-
     res = run_deck("plugin list\n", tmp_path)
     assert res.returncode == 0, res.output
     assert f"command style plugin bonded_lattice/{__version__}" in res.output
@@ -25,8 +24,6 @@ def test_lmp_command_lists_version(tmp_path):
 def test_decks_and_python_module_run_the_same_lammps(lmp_instance, tmp_path):
     # lmp (or BONDED_LATTICE_LMP) and `import lammps` must be one LAMMPS build
     import re
-
-    from helpers.decks import run_deck
 
     res = run_deck("info config\n", tmp_path)
     assert res.returncode == 0, res.output
@@ -38,8 +35,6 @@ def test_decks_and_python_module_run_the_same_lammps(lmp_instance, tmp_path):
 def test_mpirun_starts_one_lammps_on_two_ranks(tmp_path):
     # a launcher of another MPI starts two independent 1-rank runs instead
     import re
-
-    from helpers.decks import run_deck
 
     deck = "region b block 0 1 0 1 0 1\ncreate_box 1 b\nmass 1 1.0\nrun 0\n"
     res = run_deck(deck, tmp_path, np=2)

@@ -3,23 +3,13 @@
 from __future__ import annotations
 
 import pytest
+from helpers.decks import opening, pair_lines, run_deck, sphere_props
+from helpers.materials import D, QUARTZ_2D
 
-D = 1.0e-3
-BLOCK = f"""
-units si
-dimension 2
-boundary f f p
-atom_style sphere
-newton on
-lattice hex {D}
+BLOCK = opening(lattice=f"hex {D}", box="-5 20 -5 13 -0.5 0.5") + """\
 region block block -0.25 14.25 -0.25 8.46 -0.5 0.5
-region box block -5 20 -5 13 -0.5 0.5
-create_box 1 box
 create_atoms 1 region block
-set type 1 diameter {D}
-set type 1 mass 2.295e-3
-pair_style lattice/bond
-pair_coeff 1 1 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915
+""" + sphere_props(which="type 1") + pair_lines({"1 1": QUARTZ_2D}) + f"""\
 neighbor 1e-4 bin
 variable xlo equal $(bound(all,xmin)-0.5*{D})
 variable xhi equal $(bound(all,xmax)+0.5*{D})
@@ -59,8 +49,6 @@ def test_servo_walls_hold_the_confining_stress(lmp_instance, pressure):
 
 
 def test_servo_and_vel_exclude_each_other(tmp_path):
-    from helpers.decks import run_deck
-
     deck = BLOCK.replace("{P} ${H}", "1e6 ${H} vel 0.1")
     res = run_deck(deck + "run 10\n", tmp_path)
     assert res.returncode != 0

@@ -10,11 +10,11 @@ import re
 import pytest
 from bonded_lattice.conversion import critical_time_step
 from helpers.decks import block_2d_deck, lattice_block, run_deck
+from helpers.materials import D, QUARTZ, QUARTZ_2D, QUARTZ_3D, QUARTZ_MASS
 
-D = 1.0e-3
-MASS = 2.295e-3                        # quartz, 2D, per metre of thickness
-KN, KS = 6.5874e10, 2.3715e10
-DECK = block_2d_deck("-2 14 -2 12", "0 10 0 8", coeffs=f"{KN} {KS} 1.9011e-7 3.6905e4 0.23915") + """
+MASS = QUARTZ_MASS[2]                  # quartz, 2D, per metre of thickness
+KN, KS = QUARTZ[2].Kn, QUARTZ[2].Ks
+DECK = block_2d_deck("-2 14 -2 12", "0 10 0 8", coeffs=QUARTZ_2D) + """
 # a small random vibration, far below breaking, no damping
 variable        vx atom 0.01*normal(0,1,8411)
 variable        vy atom 0.01*normal(0,1,2203)
@@ -82,7 +82,7 @@ def test_twice_the_critical_time_step_is_stopped_with_step_and_atom(tmp_path, in
 # critical time step as the per-atom loops do (four times the Gershgorin bound,
 # which is 0.6-0.9 of the exact limit)
 D3_MASS = 2650.0 * math.pi / 6.0 * D**3          # quartz sphere
-D3_KN, D3_KS = 4.6794e7, 8.0679e6
+D3_KN, D3_KS = QUARTZ[3].Kn, QUARTZ[3].Ks
 DECK_3D = f"""
 units           si
 atom_style      atomic
@@ -90,7 +90,7 @@ newton          on
 {lattice_block(3, "-3 8 -3 8 -3 8", "0 5 0 5 0 5")}create_atoms    1 region block
 mass            1 {D3_MASS}
 pair_style      lattice/bond diameter {D}
-pair_coeff      1 1 {D3_KN} {D3_KS} 1.7037e-07 18.452 0.39645
+pair_coeff      1 1 {QUARTZ_3D}
 variable        vx atom 0.01*normal(0,1,8411)
 variable        vy atom 0.01*normal(0,1,2203)
 variable        vz atom 0.01*normal(0,1,5113)

@@ -21,7 +21,8 @@ import re
 
 import numpy as np
 import pytest
-from helpers.decks import lattice_block
+from helpers.decks import lattice_block, pair_lines, run_deck, sphere_props
+from helpers.materials import D, QUARTZ, QUARTZ_2D, QUARTZ_MASS
 
 # ---------------------------------------------------------------------------------------
 # The unit systems, from the LAMMPS documentation of the units command
@@ -100,13 +101,20 @@ class Units:
 # ---------------------------------------------------------------------------------------
 # The scene, in SI (2D: per metre of thickness)
 # ---------------------------------------------------------------------------------------
-D = 1.0e-3
+
+
+def quartz_bond(dim: int) -> dict[str, float]:
+    """The scene's bond coefficients: quartz (helpers.materials)."""
+    b = QUARTZ[dim]
+    return dict(kn=b.Kn, ks=b.Ks, xb=b.Xb, fs0=b.Fs0, mup=b.mu_p)
+
+
 SCENE = {
-    2: dict(mass=2.295e-3, kn=6.5874e10, ks=2.3715e10, xb=1.9011e-7, fs0=3.6905e4, mup=0.23915,
+    2: dict(mass=QUARTZ_MASS[2], **quartz_bond(2),
             box="-3 11 -2 8", block="0 7.9 0 4.2", scale=D, pull=1.5, eta=1000.0,
             dt=2.0e-8, steps=400),
-    3: dict(mass=2650.0 * math.pi / 6.0 * D**3, kn=4.6794e7, ks=8.0679e6, xb=1.7037e-7,
-            fs0=18.452, mup=0.39645, box="-3 7 -3 7 -3 7", block="0 3.9 0 2.9 0 2.4",
+    3: dict(mass=2650.0 * math.pi / 6.0 * D**3, **quartz_bond(3),    # a quartz sphere
+            box="-3 7 -3 7 -3 7", block="0 3.9 0 2.9 0 2.4",
             scale=D * 2**0.5, pull=1.5, eta=0.5, dt=1.5e-8, steps=400),
 }
 # m/s, initial velocities: scattered by a function of the atom ID, not by normal(), whose
@@ -329,10 +337,7 @@ units           si
 atom_style      sphere
 newton          on
 {block}create_atoms    1 region block
-set             type 1 diameter 1e-3
-set             type 1 mass 2.295e-3
-pair_style      lattice/bond
-pair_coeff      1 1 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915
+""" + sphere_props(which="type 1") + pair_lines({"1 1": QUARTZ_2D}) + """\
 neighbor        1.0e-4 bin
 region          toplayer block INF INF 3.2 INF INF INF
 group           top region toplayer
@@ -395,8 +400,6 @@ def test_metal_scene_on_two_ranks(scenes, tmp_path):
     # the metal scene on two ranks gives the one-rank SI answers: the same broken bonds,
     # the energy budget to 1e-10 of the work (forces and sums add in another order:
     # measured 7.6e-13)
-    from helpers.decks import run_deck
-
     values = " ".join(f"$(c_e[{k}]:%.17g)" for k in range(1, 11))
     script = deck(Units("metal", 2), 2) + f"""
 print           "BUDGET {values} $(c_bonds[2]:%.17g) $(c_bonds[3]:%.17g)"
@@ -413,8 +416,6 @@ print           "BUDGET {values} $(c_bonds[2]:%.17g) $(c_bonds[3]:%.17g)"
 
 @pytest.mark.mpi
 def test_uncounted_energy_warning_is_printed_once_on_two_ranks(tmp_path):
-    from helpers.decks import run_deck
-
     script = ENERGY_DECK.format(block=lattice_block(2, "-2 10 -2 8", "0 6 0 4"),
                                 fixes="fix bath inner langevin 300 300 1e-6 4821", work="")
     result = run_deck(script, tmp_path, np=2)

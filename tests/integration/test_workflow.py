@@ -12,19 +12,16 @@ from bonded_lattice.conversion import BondParameters, bond_to_rock, rock_to_bond
 from bonded_lattice.decks import DeckSpec, deck_text
 from bonded_lattice.experiment import run_test
 from bonded_lattice.rocks import get_rock
-
-# worked values of docs/theory.md (quartz, d = 1 mm); the 2017 paper misprints Ks
-WORKED = {
-    2: (6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915),
-    3: (4.6794e7, 8.0679e6, 1.7037e-7, 18.452, 0.39645),
-}
+from helpers.materials import QUARTZ_2D, WORKED
 
 
 @pytest.mark.parametrize("dim", [2, 3])
 def test_quartz_worked_values(dim):
     b = rock_to_bond(90e9, 0.16, 25e6, 252e6, 1.0, 1e-3, dim)
     # the sheet prints 5 significant digits
-    np.testing.assert_allclose([b.Kn, b.Ks, b.Xb, b.Fs0, b.mu_p], WORKED[dim], rtol=1e-4)
+    np.testing.assert_allclose([b.Kn, b.Ks, b.Xb, b.Fs0, b.mu_p],
+                               [WORKED[dim][k] for k in ("Kn", "Ks", "Xb", "Fs0", "mu_p")],
+                               rtol=1e-4)
 
 
 @pytest.mark.filterwarnings("ignore::UserWarning")  # random rocks may be unable to reach Cu
@@ -90,8 +87,7 @@ def test_cli_convert_prints_pair_coeff(capsys):
     assert main(["convert", "--rock", "quartz", "--dim", "3"]) == 0
     out = capsys.readouterr().out
     assert "pair_coeff" in out and "46793831" in out
-    assert main(["convert", "--dim", "2", "--bond", "6.5874e10", "2.3715e10", "1.9011e-7",
-                 "3.6905e4", "0.23915"]) == 0
+    assert main(["convert", "--dim", "2", "--bond", *QUARTZ_2D.split()]) == 0
     out = capsys.readouterr().out
     # the worked values carry 5 digits, so E comes back as 9.0000e10 to that precision
     E = float(out.split("E = ")[1].split()[0])

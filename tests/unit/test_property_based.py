@@ -17,6 +17,7 @@ from hypothesis import strategies as st
 from bonded_lattice.conversion import BondParameters, bond_to_rock, rock_to_bond
 from bonded_lattice.decks import DeckSpec, deck_text
 from bonded_lattice.lattice import close_packed_block_3d, hex_block_2d
+from helpers.materials import QUARTZ
 
 # any float, including the awkward ones
 ANY = st.floats(allow_nan=True, allow_infinity=True)
@@ -99,7 +100,7 @@ def test_3d_blocks_work_or_name_the_bad_value(n, d, aspect):
     assert lattice.n > 0 and np.all(np.isfinite(lattice.positions))
 
 
-QUARTZ_2D = BondParameters(6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915)
+QUARTZ_2D = QUARTZ[2]
 
 
 @FAST

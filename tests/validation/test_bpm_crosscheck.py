@@ -46,12 +46,13 @@ import numpy as np
 import pytest
 from bonded_lattice.io import read_atom_dump
 from helpers.decks import run_deck
+from helpers.materials import QUARTZ, QUARTZ_ROCK
 
-# quartz bond parameters (as in the examples): 2D per metre of thickness, 3D
-KN = {2: 6.5874e10, 3: 4.6794e7}
-XB = {2: 1.9011e-7, 3: 1.7037e-7}
+# quartz bond parameters (helpers.materials): 2D per metre of thickness, 3D
+KN = {dim: QUARTZ[dim].Kn for dim in (2, 3)}
+XB = {dim: QUARTZ[dim].Xb for dim in (2, 3)}
 DT = {2: 2.0e-8, 3: 1.0e-8}
-RHO = 2650.0
+RHO = QUARTZ_ROCK.rho
 
 # 3D: half the fcc cube edge, h = a/2 = d/sqrt(2) with d ~ 1 mm, on a grid of
 # 2^-36 m (26-bit mantissa: h^2 and 2 h^2 are exact, so is every coordinate i*h)

@@ -8,27 +8,21 @@ second order: halving dt divides it by 4.
 from __future__ import annotations
 
 import math
+from dataclasses import astuple
 
 import numpy as np
 import pytest
 from bonded_lattice.experiment import run_test
 from bonded_lattice.rocks import get_rock
-from helpers.decks import run_deck
+from helpers.decks import opening, run_deck
+from helpers.materials import QUARTZ, QUARTZ_MASS
 
-# quartz 2D, d = 1 mm (worked values of docs/theory.md)
-KN, KS, XB, FS0, MUP = 6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915
-MASS = 2.295e-3
+# quartz 2D, d = 1 mm (helpers.materials)
+KN, KS, XB, FS0, MUP = astuple(QUARTZ[2])
+MASS = QUARTZ_MASS[2]
 
-BLOCK = """
-units si
-dimension 2
-boundary f f p
-atom_style sphere
-newton on
-lattice hex 1e-3
+BLOCK = opening(lattice="hex 1e-3", box="-5 13 -5 10 -0.5 0.5") + """\
 region block block -0.25 7.75 -0.25 4.4 -0.5 0.5
-region box block -5 13 -5 10 -0.5 0.5
-create_box 1 box
 create_atoms 1 region block
 set type 1 diameter 1e-3
 set type 1 mass {mass}
@@ -84,14 +78,7 @@ def test_damped_vibration_heat_closes_the_balance():
     assert errors[0] / errors[1] == pytest.approx(4.0, rel=0.15)
 
 
-PAIR = """
-units si
-dimension 2
-boundary f f p
-atom_style sphere
-newton on
-region box block -5e-3 5e-3 -5e-3 5e-3 -5e-4 5e-4
-create_box 1 box
+PAIR = opening(box="-5e-3 5e-3 -5e-3 5e-3 -5e-4 5e-4") + """\
 create_atoms 1 single 0 0 0 units box
 create_atoms 1 single {x2} {y2} 0 units box
 set type 1 diameter 1e-3

@@ -12,9 +12,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from helpers.decks import block_2d_deck, run_deck
+from helpers.materials import QUARTZ, coeffs
 
+# quartz with Ks from the command line (-var ks): central springs alone, or quartz
 DECK = block_2d_deck("-2 8 -2 8", "0 3.9 0 3.2",
-                     coeffs="6.5874e10 ${ks} 1.9011e-7 3.6905e4 0.23915") + """
+                     coeffs=coeffs(QUARTZ[2], Ks="${ks}")) + """
 variable        vx atom 0.01*normal(0,1,8411)
 variable        vy atom 0.01*normal(0,1,2203)
 velocity        all set v_vx v_vy NULL units box
@@ -29,7 +31,7 @@ thermo          100000
 timestep        ${dt}
 run             1000000
 """
-KS = 2.3715e10
+KS = QUARTZ[2].Ks
 
 
 def blocks(tmp_path, dt: float, ks: float) -> tuple[np.ndarray, float]:

@@ -14,33 +14,23 @@ import re
 
 import numpy as np
 import pytest
-from helpers.decks import block_2d_deck, run_deck
+from helpers.decks import (atoms_at, block_2d_deck, opening, pair_lines, patchy_grains, run_deck,
+                           sphere_props)
+from helpers.materials import D, QUARTZ, coeffs
 
-D = 1.0e-3
-KN, X0 = 6.5874e10, 1.0e-7
+KN, X0 = QUARTZ[2].Kn, 1.0e-7
+CHAIN_BOX = "-2e-3 5e-3 -2e-3 2e-3 -5e-4 5e-4"
 LMP_STYLE_LOCAL, LMP_TYPE_ARRAY = 2, 2
 
 
 def chain(lmp, ks: float = 0.0) -> None:
-    lmp.commands_string(f"""
-units           si
-dimension       2
-boundary        f f p
-atom_style      sphere
-newton          on
-region          box block -2e-3 5e-3 -2e-3 2e-3 -5e-4 5e-4
-create_box      4 box
-create_atoms    1 single 0 0 0
-create_atoms    2 single {D} 0 0
-create_atoms    3 single {2 * D} 0 0
-create_atoms    4 single {3 * D} 0 0
-set             atom * diameter {D}
-set             atom * mass 2.295e-3
-pair_style      lattice/bond
-pair_coeff      * * {KN} {ks} {10 * X0} 1.0e6 0.0 bond no
-pair_coeff      1 2 {KN} {ks} {1.00 * X0} 1.0e6 0.0
-pair_coeff      2 3 {KN} {ks} {1.05 * X0} 1.0e6 0.0
-pair_coeff      3 4 {KN} {ks} {2.00 * X0} 1.0e6 0.0
+    lmp.commands_string(opening(box=CHAIN_BOX, types=4)
+                        + atoms_at([(0, 0), (D, 0), (2 * D, 0), (3 * D, 0)], types=[1, 2, 3, 4])
+                        + sphere_props() + pair_lines({
+                            "* *": f"{KN} {ks} {10 * X0} 1.0e6 0.0 bond no",
+                            "1 2": f"{KN} {ks} {1.00 * X0} 1.0e6 0.0",
+                            "2 3": f"{KN} {ks} {1.05 * X0} 1.0e6 0.0",
+                            "3 4": f"{KN} {ks} {2.00 * X0} 1.0e6 0.0"}) + """\
 neighbor        1.0e-4 bin
 group           ends type 1 4
 fix             line all setforce NULL 0 0
@@ -151,15 +141,10 @@ def test_bad_quasistatic_input_names_the_value(tmp_path, args, message):
     assert re.search(message, result.output), result.output[-1500:]
 
 
-QS_BLOCK = block_2d_deck("-2 24 -2 24", "0 20 0 20", coeffs=None) + """
-reset_atoms     id sort yes
-fix             props all property/atom i_grain d_stiff
-variable        gid atom floor(x/5.0e-3)+7*floor(y/5.0e-3)
-variable        sf atom 1.0+0.4*sin(v_gid*2.3)
-set             atom * i_grain v_gid
-set             atom * d_stiff v_sf
-pair_style      lattice/bond stiffness d_stiff grain i_grain strength 0.7 1.3 seed 31
-pair_coeff      * * 6.5874e10 0 1.9011e-7 3.6905e4 0.0
+# Ks = 0 and mu_p = 0: the chain's central springs, in a heterogeneous block
+QS_BLOCK = block_2d_deck("-2 24 -2 24", "0 20 0 20", coeffs=None) + patchy_grains(
+    "5.0e-3", 7, 0.4, 2.3) + pair_lines(coeffs(QUARTZ[2], Ks=0.0, mu_p=0.0),
+                                        "stiffness d_stiff grain i_grain strength 0.7 1.3 seed 31") + """\
 region          bot block INF INF INF 0.5 INF INF
 region          top block INF INF 16.5 INF INF INF
 group           bot region bot
@@ -199,21 +184,9 @@ def test_quasistatic_block_breaks_the_same_bonds_on_one_and_two_ranks(tmp_path):
     np.testing.assert_array_equal(t1, t2)
 
 
-CHAIN_DECK = """
-units           si
-dimension       2
-boundary        f f p
-atom_style      sphere
-newton          on
-region          box block -2e-3 5e-3 -2e-3 2e-3 -5e-4 5e-4
-create_box      1 box
-create_atoms    1 single 0 0 0
-create_atoms    1 single 1.0e-3 0 0
-create_atoms    1 single 2.0e-3 0 0
-set             atom * diameter 1.0e-3
-set             atom * mass 2.295e-3
-pair_style      lattice/bond
-pair_coeff      * * 6.5874e10 0 1.0e-7 1.0e6 0.0
+# three particles in a row, bonds 1-2 and 2-3 of Ks = 0 and Xb = X0
+CHAIN_DECK = (opening(box=CHAIN_BOX) + atoms_at([(0, 0), (1.0e-3, 0), (2.0e-3, 0)]) + sphere_props()
+              + pair_lines(coeffs(QUARTZ[2], Ks=0, Xb=X0, Fs0=1.0e6, mu_p=0.0)) + """\
 neighbor        1.0e-4 bin
 group           ends id 1 3
 fix             line all setforce NULL 0 0
@@ -226,7 +199,7 @@ displace_atoms  far move 3.0e-7 0 0 units box
 {thermo}
 lattice/quasistatic ftol 1.0e-6 quiet {quiet}
 print           "BROKEN $(c_b[2])"
-"""
+""")
 
 
 @pytest.mark.parametrize("quiet", ["yes", "no"])

@@ -39,17 +39,19 @@ about 1e-23 E_b).
 from __future__ import annotations
 
 import math
+from dataclasses import astuple
 
 import numpy as np
 import pytest
 from bonded_lattice.io import read_atom_dump
+from helpers.decks import run_deck
+from helpers.materials import QUARTZ as QUARTZ_BONDS
+from helpers.materials import QUARTZ_2D, QUARTZ_MASS, D
 
-D = 1.0e-3
 DT = 1.0e-8
-# quartz bond parameters (docs/pair_lattice_bond.rst): Kn Ks Xb Fs0 mu_p; mass of a particle
-QUARTZ = {2: (6.5874e10, 2.3715e10, 1.9011e-7, 3.6905e4, 0.23915),
-          3: (4.6794e7, 8.0679e6, 1.7037e-7, 18.452, 0.39645)}
-MASS = {2: 2.295e-3, 3: 1.874e-6}
+# quartz bond parameters (helpers.materials): Kn Ks Xb Fs0 mu_p; mass of a particle
+QUARTZ = {dim: astuple(QUARTZ_BONDS[dim]) for dim in (2, 3)}
+MASS = QUARTZ_MASS
 UNBREAKABLE_FS0 = 1.0e30
 AXIS = {2: (0.0, 0.0, 1.0), 3: (1.0, 2.0, 3.0)}    # 3D: parallel to no bond of the fcc lattice
 CENTRE = {2: (0.3e-3, 0.2e-3, 0.0), 3: (0.1e-3, 0.2e-3, 0.05e-3)}
@@ -474,7 +476,7 @@ write_dump      all custom final.dump id x y vx vy modify sort id format float %
 SPIN_START = """
 read_data       data.block
 pair_style      lattice/bond shear_frame {frame}
-pair_coeff      * * 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915
+pair_coeff      * * """ + QUARTZ_2D + """
 variable        vx atom -{omega}*y+0.05*sin(2917*x+1900*y+0.3)
 variable        vy atom {omega}*x+0.05*cos(2311*x-1400*y+1.1)
 velocity        all set v_vx v_vy NULL
@@ -486,8 +488,6 @@ def read_final(work) -> np.ndarray:
 
 
 def spin(work, np_: int, frame: str, steps: int = 18000, tail: str = ""):
-    from helpers.decks import run_deck
-
     deck = SPIN_DECK.format(start=SPIN_START.format(frame=frame, omega=SPIN_OMEGA),
                             steps=steps, tail=tail)
     res = run_deck(deck, work, np=np_, files={"data.block": spin_data()})
@@ -536,8 +536,6 @@ def test_corotational_restart_continues_the_spin(tmp_path):
     1e-12 d."""
     spin(tmp_path / "whole", 1, "corotational")
     spin(tmp_path / "first", 2, "corotational", steps=9000, tail="write_restart half.restart")
-    from helpers.decks import run_deck
-
     resume = SPIN_DECK.format(start="read_restart    ../first/half.restart", steps=9000, tail="")
     res = run_deck(resume, tmp_path / "second", np=1)
     assert res.returncode == 0, res.output[-3000:]

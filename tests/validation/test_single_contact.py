@@ -63,6 +63,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers.decks import run_deck
 
 RHO = 2500.0
 RADIUS = 50.0
@@ -379,29 +380,41 @@ def test_t1_second_order_convergence(tmp_path):
         assert q > 2.5
 
 
+def check_damping_lag(label: str, run: dict, analytic, tol_y: float, tol_v: float):
+    """A damped run (T2, T4) against ``analytic(t, m, eta)`` at eta = ETA; returns the events
+    of the analytic solution and of the m_eff solution.
+
+    Tolerance: the known O(dt) lag of half-step-velocity damping, as computed from the
+    modified equation (the m_eff solution minus the analytic one; its own next-order term is
+    ~ n dt = 0.7 % of it, covered by the factor 1.1) plus the eta = 0 Verlet bounds tol_y,
+    tol_v (the damped motion is slower, so its Verlet errors are smaller).  And the error
+    really is that lag: against the m_eff solution only the Verlet O(dt^2) terms and the
+    next order of the modified equation remain, the latter ~ (n dt) * lag = 0.7 % of the lag
+    (measured 0.6 %); 0.02 * lag allows a factor 3."""
+    t = run["t"]
+    y_a, v_a, ev = analytic(t, eta=ETA)
+    y_m, v_m, ev_m = analytic(t, m=m_eff(DT, ETA), eta=ETA)
+    lag_y = np.abs(y_m - y_a).max()
+    lag_v = np.abs(v_m - v_a).max()
+    err_y = np.abs(run["y"] - y_a).max()
+    err_v = np.abs(run["vy"] - v_a).max()
+    err_ym = np.abs(run["y"] - y_m).max()
+    err_vm = np.abs(run["vy"] - v_m).max()
+    print(f"{label} max |y err| {err_y:.3e} (lag {lag_y:.3e}), max |v err| {err_v:.3e} "
+          f"(lag {lag_v:.3e}); vs m_eff solution: y {err_ym:.3e}, v {err_vm:.3e}")
+    assert err_y < 1.1 * lag_y + 1.5 * tol_y
+    assert err_v < 1.1 * lag_v + 1.5 * tol_v
+    assert err_ym < 1.5 * tol_y + 0.02 * lag_y
+    assert err_vm < 1.5 * tol_v + 0.02 * lag_v
+    return ev, ev_m
+
+
 def test_t2_normal_contact_damped(tmp_path):
     run = simulate(tmp_path, "normal", eta=ETA)
     t = run["t"]
-    y_a, v_a, ev = analytic_normal(t, eta=ETA)
-    y_m, v_m, ev_m = analytic_normal(t, m=m_eff(DT, ETA), eta=ETA)
-    # the known O(dt) lag of half-step-velocity damping, as computed from the modified equation
-    lag_y = np.abs(y_m - y_a).max()
-    lag_v = np.abs(v_m - v_a).max()
+    _, _, ev = analytic_normal(t, eta=ETA)
     tol_y, tol_v = verlet_normal_bounds(DT, ev["t_n"])    # eta = 0 bounds: larger than damped ones
-    err_y = np.abs(run["y"] - y_a).max()
-    err_v = np.abs(run["vy"] - v_a).max()
-    print(f"T2 max |y err| {err_y:.3e} (lag {lag_y:.3e}), max |v err| {err_v:.3e} (lag {lag_v:.3e}); "
-          f"vs m_eff solution: y {np.abs(run['y'] - y_m).max():.3e}, "
-          f"v {np.abs(run['vy'] - v_m).max():.3e}")
-    # tolerance: the lag (its own next-order term is ~ n dt = 0.7 % of it, covered by the
-    # factor 1.1) plus the eta = 0 Verlet bound
-    assert err_y < 1.1 * lag_y + 1.5 * tol_y
-    assert err_v < 1.1 * lag_v + 1.5 * tol_v
-    # ...and the error really is that lag: against the m_eff solution only the Verlet O(dt^2)
-    # terms and the next order of the modified equation remain, the latter ~ (n dt) * lag =
-    # 0.7 % of the lag (measured 0.6 %); 0.02 * lag allows a factor 3
-    assert np.abs(run["y"] - y_m).max() < 1.5 * tol_y + 0.02 * lag_y
-    assert np.abs(run["vy"] - v_m).max() < 1.5 * tol_v + 0.02 * lag_v
+    ev, ev_m = check_damping_lag("T2", run, analytic_normal, tol_y, tol_v)
     # events: contact end and exit velocity (0.21887 s, 0.02195 m/s)
     t_cross = zero_crossing(t, run["y"])
     v_exit = np.interp(t_cross, t, run["vy"])
@@ -435,8 +448,6 @@ def test_t1_t2_across_two_ranks(tmp_path, eta):
     """T1/T2 with the two particles owned by different MPI ranks (the contact force reaches
     the partner through ghost atoms and reverse communication): the trajectory is the
     one-rank trajectory to round-off (1e-12 m against 6e-3 m amplitudes)."""
-    from helpers.decks import run_deck
-
     res = run_deck("\n".join(deck("normal", "out.txt", eta=eta, nprocs_y=2)) + "\n", tmp_path, np=2)
     assert res.returncode == 0, res.output[-2000:]
     assert "1 by 2 by 1 MPI processor grid" in res.output
@@ -511,27 +522,11 @@ def test_t3_shear_contact_wall(tmp_path):
 
 def test_t4_shear_contact_wall_damped(tmp_path):
     run = simulate(tmp_path, "wall", eta=ETA)
-    t = run["t"]
-    y_a, v_a, ev = analytic_wall(t, eta=ETA)
-    y_m, v_m, ev_m = analytic_wall(t, m=m_eff(DT, ETA), eta=ETA)
-    lag_y = np.abs(y_m - y_a).max()
-    lag_v = np.abs(v_m - v_a).max()
-    _, _, ev3 = analytic_wall(t)
+    # tolerances as in T2, with the eta = 0 Verlet bound of T3
+    _, _, ev3 = analytic_wall(run["t"])
     tol_y, tol_v = verlet_wall_bounds(DT, ev3)
-    err_y = np.abs(run["y"] - y_a)
-    err_v = np.abs(run["vy"] - v_a)
-    err_ym = np.abs(run["y"] - y_m)
-    err_vm = np.abs(run["vy"] - v_m)
-    print(f"T4 max |y err| {err_y.max():.3e} (lag {lag_y:.3e}), max |v err| {err_v.max():.3e} "
-          f"(lag {lag_v:.3e}); vs m_eff: y {err_ym.max():.3e}, v {err_vm.max():.3e}; "
-          f"y_max {run['y'].max():.6f} (analytic {ev['y_b']:.6f}, m_eff {ev_m['y_b']:.6f})")
-    # tolerances as in T2: the computed O(dt) lag (+10 %) plus the eta = 0 Verlet bound of T3
-    # (the damped motion is slower, so its Verlet errors are smaller); against the m_eff
-    # solution the lag's next order, ~ n dt = 0.7 % of the lag, is allowed 2 %
-    assert err_y.max() < 1.1 * lag_y + 1.5 * tol_y
-    assert err_v.max() < 1.1 * lag_v + 1.5 * tol_v
-    assert err_ym.max() < 1.5 * tol_y + 0.02 * lag_y
-    assert err_vm.max() < 1.5 * tol_v + 0.02 * lag_v
+    ev, ev_m = check_damping_lag("T4", run, analytic_wall, tol_y, tol_v)
+    print(f"T4 y_max {run['y'].max():.6f} (analytic {ev['y_b']:.6f}, m_eff {ev_m['y_b']:.6f})")
     # phase boundaries: the run follows the m_eff solution's event times (t_a 0.02741 s,
     # t_b 0.09322 s instead of 0.02736 s, 0.09384 s) to within whole steps
     wall_checks(run, ev_m, tol_t=1e-5)

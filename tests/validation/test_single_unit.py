@@ -77,6 +77,7 @@ from dataclasses import asdict
 import numpy as np
 import pytest
 from bonded_lattice.conversion import lattice_mass, rock_to_bond
+from helpers.materials import WORKED
 
 S2 = math.sqrt(2.0)
 S3 = math.sqrt(3.0)
@@ -84,15 +85,7 @@ S3 = math.sqrt(3.0)
 QUARTZ = {"E": 90.0e9, "nu": 0.16, "Tu": 25.0e6, "Cu": 252.0e6, "mu_i": 1.0}
 D = 1.0e-3
 RHO = 2650.0
-
-# docs/theory.md "Worked values" (5 significant figures; 3D Ks is 8.0679e6, the 2017 paper's Table 1
-# misprints 8.068e5)
-WORKED = {
-    2: {"Kn": 6.5874e10, "Ks": 2.3715e10, "Xb": 1.9011e-7, "Fs0": 3.6905e4, "mu_p": 0.23915,
-        "mass": 2.295e-3},
-    3: {"Kn": 4.6794e7, "Ks": 8.0679e6, "Xb": 1.7037e-7, "Fs0": 18.452, "mu_p": 0.39645,
-        "mass": 1.874e-6},
-}
+# WORKED (helpers.materials): the worked values of docs/theory.md, 5 significant digits
 
 
 # ----------------------------------------------------------------------------------------------

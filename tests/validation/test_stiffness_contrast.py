@@ -11,17 +11,19 @@ import numpy as np
 import pytest
 from bonded_lattice.conversion import critical_time_step
 from helpers.decks import block_2d_deck, run_deck
+from helpers.materials import QUARTZ, QUARTZ_MASS
 
-MASS = 2.295e-3
-KN, KS = 6.5874e10, 2.3715e10      # the stiff layer (quartz, 2D); the soft one has 1/1000
+MASS = QUARTZ_MASS[2]
+KN, KS, MU = QUARTZ[2].Kn, QUARTZ[2].Ks, QUARTZ[2].mu_p   # the stiff layer (quartz, 2D); the
+                                                          # soft one has 1/1000
 CONTRAST = 1000.0
 DECK = block_2d_deck("-2 14 -2 14", "0 10 0 10", types=2, coeffs=None) + f"""
 region          upper block INF INF 4.5 INF INF INF
 set             region upper type 2
 pair_style      lattice/bond
-pair_coeff      1 1 {KN} {KS} 1.0e-5 1.0e6 0.23915
-pair_coeff      2 2 {KN / CONTRAST} {KS / CONTRAST} 1.0e-2 1.0e6 0.23915
-pair_coeff      1 2 {0.5 * (KN + KN / CONTRAST)} {0.5 * (KS + KS / CONTRAST)} 1.0e-5 1.0e6 0.23915
+pair_coeff      1 1 {KN} {KS} 1.0e-5 1.0e6 {MU}
+pair_coeff      2 2 {KN / CONTRAST} {KS / CONTRAST} 1.0e-2 1.0e6 {MU}
+pair_coeff      1 2 {0.5 * (KN + KN / CONTRAST)} {0.5 * (KS + KS / CONTRAST)} 1.0e-5 1.0e6 {MU}
 variable        vx atom 0.01*normal(0,1,5531)
 variable        vy atom 0.01*normal(0,1,9127)
 velocity        all set v_vx v_vy NULL units box
