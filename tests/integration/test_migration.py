@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from bonded_lattice.io import read_atom_dump
 from helpers.decks import block_2d_deck, run_deck
-from helpers.materials import QUARTZ, coeffs
+from helpers.materials import D, QUARTZ, coeffs
 
 # quartz springs that never break (Xb 1 m, Fs0 1e9 N/m): the block only vibrates
 DECK = block_2d_deck("0 24 0 6", "2 10 1 4", boundary="p p p",

@@ -14,7 +14,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from bonded_lattice.conversion import BondParameters, bond_to_rock, rock_to_bond
+from bonded_lattice.conversion import bond_to_rock, rock_to_bond
 from bonded_lattice.decks import DeckSpec, deck_text
 from bonded_lattice.lattice import close_packed_block_3d, hex_block_2d
 from helpers.materials import QUARTZ
