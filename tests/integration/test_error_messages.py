@@ -15,6 +15,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from bonded_lattice.io import read_atom_dump
 from helpers import REPO
 from helpers.decks import block_2d_deck, run_deck
 
@@ -97,9 +98,7 @@ def test_lost_atoms_take_their_bonds_with_them(tmp_path, np_):
                    "write_dump all custom ids.txt id modify sort id\n", tmp_path, np=np_)
     assert res.returncode == 0, res.error
     assert "particles left the non-periodic box" in res.output
-    lines = (tmp_path / "ids.txt").read_text().splitlines()
-    at = lines.index("ITEM: ATOMS id")
-    remaining = {int(v) for v in lines[at + 1:]}
+    remaining = {int(v) for v in read_atom_dump(tmp_path / "ids.txt")[1][:, 0]}
     assert 0 < len(remaining) < res.thermo[0]["Atoms"][0]
     before = bond_records(tmp_path / "before.bonds")
     kept = {r for r in before if r[0] in remaining and r[1] in remaining}

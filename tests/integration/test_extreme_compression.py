@@ -7,6 +7,7 @@ the platens' work (docs/robustness.md)."""
 from __future__ import annotations
 
 import numpy as np
+from bonded_lattice.io import read_atom_dump
 from helpers.decks import block_2d_deck, run_deck
 
 D = 1.0e-3
@@ -41,9 +42,8 @@ def test_compression_to_overlaps_beyond_half_a_diameter(tmp_path):
         assert np.all(np.isfinite(t[col])), col
     assert np.all(t["Atoms"] == 179)
     # the closest pair overlaps by more than half a diameter (measured: 0.56 d)
-    lines = (tmp_path / "final.dump").read_text().splitlines()
-    start = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS")) + 1
-    p = np.array([[float(v) for v in l.split()[1:3]] for l in lines[start:]])
+    names, rows = read_atom_dump(tmp_path / "final.dump")
+    p = rows[:, [names.index("x"), names.index("y")]]
     dist = np.sqrt(((p[:, None, :] - p[None, :, :]) ** 2).sum(-1))
     np.fill_diagonal(dist, np.inf)
     assert dist.min() < 0.5 * D

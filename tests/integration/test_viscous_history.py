@@ -16,6 +16,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+from bonded_lattice.io import read_atom_dump
 from helpers import INPUTS
 from helpers.decks import run_deck
 
@@ -28,9 +29,7 @@ DUMP = "write_dump all custom final.dump id x y vx vy modify sort id format floa
 def final_state(script: str, work: Path) -> np.ndarray:
     res = run_deck(SETUP + script + DUMP, work, args=ARGS)
     assert res.returncode == 0, res.output[-3000:]
-    lines = (work / "final.dump").read_text().splitlines()
-    start = next(i for i, l in enumerate(lines) if l.startswith("ITEM: ATOMS")) + 1
-    return np.array([[float(v) for v in l.split()] for l in lines[start:]])
+    return read_atom_dump(work / "final.dump")[1]
 
 
 def test_split_and_restarted_runs_follow_the_uninterrupted_one(tmp_path):

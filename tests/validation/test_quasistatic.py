@@ -14,6 +14,7 @@ import re
 
 import numpy as np
 import pytest
+from bonded_lattice.io import read_local_dump
 from helpers.decks import (atoms_at, block_2d_deck, opening, pair_lines, patchy_grains, run_deck,
                            sphere_props)
 from helpers.materials import D, QUARTZ, coeffs
@@ -57,6 +58,14 @@ def states(lmp) -> dict[tuple[int, int], tuple[int, float]]:
 CHAIN = [(1, 2), (2, 3), (3, 4)]
 
 
+def pulled_chain(lmp, stretch: float, args: str) -> None:
+    """The chain, pulled until each bond would stretch by ``stretch`` X0 in series, then
+    ``lattice/quasistatic args``."""
+    chain(lmp)
+    pull(lmp, 3 * stretch * X0)
+    lmp.command(f"lattice/quasistatic {args}")
+
+
 def chain_states(lmp) -> list[int]:
     """The states of the chain's bonds 1-2, 2-3, 3-4 (0 intact, 1 broken in tension)."""
     s = states(lmp)
@@ -65,9 +74,7 @@ def chain_states(lmp) -> list[int]:
 
 def test_break_one_breaks_the_most_overstressed_bond_only(lmp_instance):
     lmp = lmp_instance
-    chain(lmp)
-    pull(lmp, 3 * 0.9 * X0)
-    lmp.command("lattice/quasistatic ftol 1.0e-6")
+    pulled_chain(lmp, 0.9, "ftol 1.0e-6")
     s = states(lmp)
     # below every threshold: the relaxed chain shares the stretch equally
     assert [s[bond][0] for bond in CHAIN] == [0, 0, 0]
@@ -89,17 +96,13 @@ def test_break_one_breaks_the_most_overstressed_bond_only(lmp_instance):
 
 def test_break_all_breaks_every_bond_past_its_threshold(lmp_instance):
     lmp = lmp_instance
-    chain(lmp)
-    pull(lmp, 3 * 1.1 * X0)
-    lmp.command("lattice/quasistatic ftol 1.0e-6 break all")
+    pulled_chain(lmp, 1.1, "ftol 1.0e-6 break all")
     assert chain_states(lmp) == [1, 1, 0]
 
 
 def test_maxbreak_zero_only_relaxes(lmp_instance):
     lmp = lmp_instance
-    chain(lmp)
-    pull(lmp, 3 * 1.1 * X0)
-    lmp.command("lattice/quasistatic ftol 1.0e-6 maxbreak 0")
+    pulled_chain(lmp, 1.1, "ftol 1.0e-6 maxbreak 0")
     assert chain_states(lmp) == [0, 0, 0]
     assert states(lmp)[(1, 2)][1] == pytest.approx(1.1, rel=1e-6)
 
@@ -174,9 +177,7 @@ def test_quasistatic_block_breaks_the_same_bonds_on_one_and_two_ranks(tmp_path):
         result = run_deck(QS_BLOCK, work, np=np_)
         assert result.returncode == 0, result.output[-2000:]
         counts = [int(m) for m in re.findall(r"lattice/quasistatic: (\d+) bonds broke", result.output)]
-        lines = (work / "bonds.txt").read_text().splitlines()
-        start = next(k for k, line in enumerate(lines) if line.startswith("ITEM: ENTRIES")) + 1
-        rows = np.array([[int(float(v)) for v in line.split()] for line in lines[start:]])
+        rows = read_local_dump(work / "bonds.txt")[1].astype(int)
         tables[np_] = (counts, rows[np.lexsort((rows[:, 1], rows[:, 0]))])
     (c1, t1), (c2, t2) = tables[1], tables[2]
     assert sum(c1) > 5, "the test must break bonds"

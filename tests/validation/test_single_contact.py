@@ -323,18 +323,26 @@ def verlet_normal_bounds(dt: float, t_n: float):
     return ey, ev
 
 
+def check_verlet_bounds(label: str, run: dict, analytic, bounds) -> tuple[dict, float]:
+    """An undamped run (T1, T3) against ``analytic(t)``: the largest errors of y and vy
+    within 1.5 times the leading-order Verlet bounds ``bounds(events)`` (1.5: margin for the
+    O(h^4) terms left out of them, h = k dt = 0.016); returns the events and the bound of vy."""
+    y_a, v_a, ev = analytic(run["t"])
+    tol_y, tol_v = bounds(ev)
+    err_y = np.abs(run["y"] - y_a).max()
+    err_v = np.abs(run["vy"] - v_a).max()
+    print(f"{label} max |y err| {err_y:.3e} (tol {1.5 * tol_y:.3e}), "
+          f"max |v err| {err_v:.3e} (tol {1.5 * tol_v:.3e})")
+    assert err_y < 1.5 * tol_y
+    assert err_v < 1.5 * tol_v
+    return ev, tol_v
+
+
 def test_t1_normal_contact(tmp_path):
     run = simulate(tmp_path, "normal")
     t = run["t"]
-    y_a, v_a, ev = analytic_normal(t)
-    err_y = np.abs(run["y"] - y_a)
-    err_v = np.abs(run["vy"] - v_a)
-    tol_y, tol_v = verlet_normal_bounds(DT, ev["t_n"])
-    print(f"T1 max |y err| {err_y.max():.3e} (tol {1.5 * tol_y:.3e}), "
-          f"max |v err| {err_v.max():.3e} (tol {1.5 * tol_v:.3e})")
-    # 1.5: margin for the O(h^4) terms left out of the leading-order bounds (h = k dt = 0.016)
-    assert err_y.max() < 1.5 * tol_y
-    assert err_v.max() < 1.5 * tol_v
+    ev, tol_v = check_verlet_bounds("T1", run, analytic_normal,
+                                    lambda ev: verlet_normal_bounds(DT, ev["t_n"]))
     # the events: contact ends at pi/k with +0.1 m/s.  Verlet's phase error shifts the crossing
     # by pi h^2 / (24 k) = 2e-6 s; linear interpolation adds nothing comparable (y'' ~ 0 at
     # y = 0); 1e-5 s allowed.  The exit velocity errs by at most tol_v (kink term)
@@ -505,17 +513,8 @@ def wall_checks(run, ev, tol_t):
 
 def test_t3_shear_contact_wall(tmp_path):
     run = simulate(tmp_path, "wall")
-    t = run["t"]
-    y_a, v_a, ev = analytic_wall(t)
-    err_y = np.abs(run["y"] - y_a)
-    err_v = np.abs(run["vy"] - v_a)
-    tol_y, tol_v = verlet_wall_bounds(DT, ev)
-    print(f"T3 max |y err| {err_y.max():.3e} (tol {1.5 * tol_y:.3e}), max |v err| "
-          f"{err_v.max():.3e} (tol {1.5 * tol_v:.3e}), y_max {run['y'].max():.6f} "
-          f"(analytic {ev['y_b']:.6f})")
-    # 1.5: margin for the O(h^4) terms left out of the leading-order bounds
-    assert err_y.max() < 1.5 * tol_y
-    assert err_v.max() < 1.5 * tol_v
+    ev, _ = check_verlet_bounds("T3", run, analytic_wall, lambda ev: verlet_wall_bounds(DT, ev))
+    print(f"T3 y_max {run['y'].max():.6f} (analytic {ev['y_b']:.6f})")
     # phase boundaries: the analytic event times are exact, the run sees them at whole steps
     wall_checks(run, ev, tol_t=1e-5)
 
