@@ -7,7 +7,7 @@ One command runs the whole study and writes a Markdown report with PNG plots:
     python bench/speed_error.py --reuse         # rewrite the report from the cached runs
 
 1. Single-contact tests T1-T4 of Li et al. (2018), set up exactly as in
-   tests/test_single_contact.py (whose decks and analytic solutions this script
+   tests/validation/test_single_contact.py (whose decks and analytic solutions this script
    imports): error against the time step over eight values a factor 2 apart, the
    fitted convergence order, and the largest stable time step of the contact
    spring found by bisection, against Verlet's limit dt_c = 2 sqrt(m/k).
@@ -25,7 +25,7 @@ Every simulation runs on one MPI rank, one at a time.  The runs are cached as JS
 in --out (default validation-runs/speed-error, git-ignored); --reuse keeps the
 cached ones.  The pure functions (Pareto front, convergence order, Verlet's
 discrete solution, bisection, the tolerance test, the recommendation rule) are
-tested by tests/test_speed_error.py.
+tested by tests/unit/test_speed_error.py.
 """
 
 from __future__ import annotations
@@ -115,7 +115,7 @@ QUICK = Settings(
 
 
 # ---------------------------------------------------------------------------------------
-# pure functions (tested by tests/test_speed_error.py)
+# pure functions (tested by tests/unit/test_speed_error.py)
 # ---------------------------------------------------------------------------------------
 
 def pareto_front(costs: Sequence[float], errors: Sequence[float]) -> list[int]:
@@ -233,12 +233,12 @@ def speedup(paper_steps: float, steps: float) -> float:
 
 
 # ---------------------------------------------------------------------------------------
-# part 1: single-contact tests (decks and analytic solutions of tests/test_single_contact.py)
+# part 1: single-contact tests (decks and analytic solutions of tests/validation/test_single_contact.py)
 # ---------------------------------------------------------------------------------------
 
 def contact_module():
-    """tests/test_single_contact.py as a module: its decks, constants and solutions."""
-    path = ROOT / "tests" / "test_single_contact.py"
+    """tests/validation/test_single_contact.py as a module: its decks, constants and solutions."""
+    path = ROOT / "tests" / "validation" / "test_single_contact.py"
     spec = importlib.util.spec_from_file_location("_single_contact_tests", path)
     mod = importlib.util.module_from_spec(spec)
     assert spec.loader is not None
@@ -1079,7 +1079,7 @@ def write_doc(doc: Path, cmd: str, s: Settings, quick: bool, contact: dict, lat:
     # ---------------- part 1 ----------------
     add("## 1. Single-contact tests (Li et al. 2018): error against dt")
     add("")
-    add("The decks and analytic solutions of `tests/test_single_contact.py` (m = 2.1651e7 kg, "
+    add("The decks and analytic solutions of `tests/validation/test_single_contact.py` (m = 2.1651e7 kg, "
         "Kn = Ks = 5.5e9 N/m, runs to 0.4 s), at eight time steps a factor 2 apart around the "
         "paper's 1e-3 s.  Error: max |y - analytic| over the whole run, and over the smooth "
         "first phase (before the first kink in the force: contact opening or stick-to-slip, "

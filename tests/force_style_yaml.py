@@ -8,7 +8,7 @@ pre_commands, input_file, pair_style, pair_coeff, post_commands), and after
 (run_*) the pair energy (vdwl; lattice/bond has no Coulomb part, coul = 0), the
 pair virial (stress: xx yy zz xy xz yz, in energy units, summed over the atoms,
 as Pair::virial) and the force on every atom by ID, with 16 significant digits.
-The test (tests/test_force_style_yaml.py) runs the deck again and compares.
+The test (tests/integration/test_force_style_yaml.py) runs the deck again and compares.
 
 Regenerate (only with a reason, in its own commit, saying why the numbers moved:
 a deliberate change of the force law, its arithmetic or the deck; never to make

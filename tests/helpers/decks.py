@@ -40,9 +40,10 @@ def run_deck(script: str, workdir: Path, np: int = 1, name: str = "in.test",
 
 def opening(dim: int = 2, box: str | None = "-0.01 0.01 -0.01 0.01 -0.001 0.001",
             types: int = 1, boundary: str | None = None, atom_style: str = "sphere",
-            newton: str = "on", lattice: str | None = None) -> str:
+            newton: str = "on", lattice: str | None = None, settings: str = "") -> str:
     """``units si`` to ``create_box``: boundaries ``f f p`` (2D) or ``f f f`` (3D) unless
-    given; ``lattice``: the arguments of a lattice command before the box (``hex 0.001``);
+    given; ``settings``: lines that must come before the box (``atom_modify map array``);
+    ``lattice``: the arguments of a lattice command before the box (``hex 0.001``);
     ``box``: ``xlo xhi ylo yhi zlo zhi`` of the box region (in lattice units after a
     lattice, else in metres), None for no box (a data file follows); ``types`` atom types."""
     if boundary is None:
@@ -53,7 +54,7 @@ dimension       {dim}
 boundary        {boundary}
 atom_style      {atom_style}
 newton          {newton}
-"""
+""" + (settings.rstrip("\n") + "\n" if settings else "")
     if lattice is not None:
         text += f"lattice         {lattice}\n"
     if box is not None:

@@ -48,7 +48,7 @@ CASES = {
                                   ["keyword shear_frame needs a value"]),
     "cutoff shorter than bonds": (pair(style="cutoff 0.0005"),
                                   ["cutoff 0.0005 is too small", "use cutoff >= 0.00101"]),
-    # atom_style atomic needs the diameter keyword (tests/test_atomic_style.py)
+    # atom_style atomic needs the diameter keyword (tests/integration/test_atomic_style.py)
     "atomic style without diameter": ("", ["atom_style atomic has no per-atom diameter",
                                            "keyword diameter"]),
     "newton off": (pair(), ["requires newton on"]),

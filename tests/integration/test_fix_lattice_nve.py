@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from helpers import INPUTS
-from helpers.decks import SHAKE, run_deck, shaken_block
+from helpers.decks import SHAKE, atoms_at, opening, run_deck, shaken_block
 from helpers.materials import D, WEAK_SHEAR, coeffs
 
 COEFFS = {dim: "* * " + coeffs(WEAK_SHEAR[dim]) for dim in (2, 3)}
@@ -61,14 +61,8 @@ def test_per_type_mass_matches_fix_nve(lmp_instance):
     under gravity reach x = x0 + v0 t + g t^2 / 2 (velocity Verlet is exact for a
     constant force) exactly like fix nve."""
     lmp = lmp_instance
-    lmp.commands_string("""
-units           si
-atom_style      atomic
-boundary        f f f
-region          box block 0 10 0 10 0 10
-create_box      2 box
-create_atoms    1 single 1 1 5
-create_atoms    2 single 5 5 8
+    lmp.commands_string(opening(3, box="0 10 0 10 0 10", types=2, atom_style="atomic")
+                        + atoms_at([(1, 1, 5), (5, 5, 8)], types=[1, 2]) + """\
 mass            1 2.0
 mass            2 3.0
 velocity        all set 1.0 -0.5 0.25

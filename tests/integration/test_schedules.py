@@ -5,17 +5,9 @@ from __future__ import annotations
 import pytest
 from bonded_lattice.experiment import PAPER_SCHEDULES, run_test
 from bonded_lattice.rocks import get_rock
-from helpers.decks import run_deck
+from helpers.decks import atoms_at, opening, run_deck
 
-ONE_PARTICLE = """
-units si
-dimension 3
-boundary f f f
-atom_style sphere
-newton on
-region box block -1 1 -1 1 -1 1
-create_box 1 box
-create_atoms 1 single 0 0 0
+ONE_PARTICLE = opening(3, box="-1 1 -1 1 -1 1") + atoms_at([(0, 0, 0)]) + """\
 set atom 1 diameter 0.2 density 1000
 pair_style lattice/bond
 pair_coeff * * 1.0e3 0 1.0e-3 1.0 0.1
@@ -52,7 +44,7 @@ def test_variable_wall_errors_name_the_problem(tmp_path, line, fragment):
 def test_paper_schedule_single_unit_compression(tmp_path):
     # the 2013 paper's stepwise schedule (1.9e-9 m per platen, 400 relaxation steps)
     # on the three-particle unit: Cu -0.98% in the paper (MatDEM), -0.88% for the
-    # exact finite-strain path (tests/test_single_unit.py); measured -0.92%
+    # exact finite-strain path (tests/validation/test_single_unit.py); measured -0.92%
     s = run_test(get_rock("quartz"), 2, "compression", 2, tmp_path, np_=1, progress=False,
                  schedule="paper")
     assert s["plan"]["relax_steps"] == PAPER_SCHEDULES[2]["relax_steps"] == 400

@@ -10,26 +10,16 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from helpers.decks import atoms_at, opening, pair_lines, sphere_props
+from helpers.materials import D
 
 KN, KS = 2.0e6, 5.0e5
-D = 1.0e-3
 
 
 def build(lmp, dimension: int) -> None:
-    lmp.commands_string(f"""
-units si
-dimension {dimension}
-boundary f f {'p' if dimension == 2 else 'f'}
-atom_style sphere
-newton on
-region box block -0.01 0.01 -0.01 0.01 -0.01 0.01
-create_box 1 box
-create_atoms 1 single 0 0 0
-create_atoms 1 single {D} 0 0
-set atom * diameter {D}
-set atom * mass 1.0
-pair_style lattice/bond
-pair_coeff 1 1 {KN} {KS} 1.0 1.0e6 0.0
+    lmp.commands_string(opening(dimension, box="-0.01 0.01 -0.01 0.01 -0.01 0.01")
+                        + atoms_at([(0, 0), (D, 0)]) + sphere_props(D, 1.0)
+                        + pair_lines({"1 1": f"{KN} {KS} 1.0 1.0e6 0.0"}) + """\
 compute vir all pressure NULL virial
 compute sa all stress/atom NULL virial
 compute sasum all reduce sum c_sa[1] c_sa[2] c_sa[4]

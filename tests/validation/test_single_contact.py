@@ -63,7 +63,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from helpers.decks import run_deck
 
 RHO = 2500.0
 RADIUS = 50.0
@@ -456,6 +455,8 @@ def test_t1_t2_across_two_ranks(tmp_path, eta):
     """T1/T2 with the two particles owned by different MPI ranks (the contact force reaches
     the partner through ghost atoms and reverse communication): the trajectory is the
     one-rank trajectory to round-off (1e-12 m against 6e-3 m amplitudes)."""
+    from helpers.decks import run_deck   # here: bench/speed_error.py loads this module by path
+
     res = run_deck("\n".join(deck("normal", "out.txt", eta=eta, nprocs_y=2)) + "\n", tmp_path, np=2)
     assert res.returncode == 0, res.output[-2000:]
     assert "1 by 2 by 1 MPI processor grid" in res.output
