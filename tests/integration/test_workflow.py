@@ -8,11 +8,11 @@ import math
 import numpy as np
 import pytest
 from bonded_lattice.cli import main
-from bonded_lattice.conversion import BondParameters, bond_to_rock, rock_to_bond
+from bonded_lattice.conversion import bond_to_rock, rock_to_bond
 from bonded_lattice.decks import DeckSpec, deck_text
 from bonded_lattice.experiment import run_test
 from bonded_lattice.rocks import get_rock
-from helpers.materials import QUARTZ_2D, WORKED
+from helpers.materials import QUARTZ, QUARTZ_2D, WORKED
 
 
 @pytest.mark.parametrize("dim", [2, 3])
@@ -67,7 +67,7 @@ def test_invalid_bond_parameters_raise(args, fragment):
 
 
 def test_deck_spec_rejects_bad_values():
-    bond = BondParameters(*WORKED[2])
+    bond = QUARTZ[2]
     good = dict(test="tension", dim=2, d=1e-3, bond=bond, data_file="x", area=0.03, eta=1.0,
                 speed=0.01, steps=10)
     DeckSpec(**good)
