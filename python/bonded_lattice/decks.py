@@ -19,11 +19,13 @@ and loads the block along its loading axis (y in 2D, z in 3D):
   holds the lateral faces at zero stress: uniaxial tension with no boundary
   layer; the stress is the virial pressure.
 
-A heterogeneous block (``DeckSpec.grains``, :mod:`bonded_lattice.grains`) has
-its grain ids and stiffness factors in the data file's ``Grains`` section; the
-deck defines ``fix grains all property/atom i_grain d_stiffness ghost yes``
-before ``read_data ... fix grains NULL Grains`` and passes the grain, strength
-and boundary options to ``pair_style lattice/bond``.
+The deck is made of the shared sections of :mod:`bonded_lattice.deck` (the
+opening with the pair style, the integrator, the platens and side walls, the
+outputs) around the tests' own strain measurements and loading.  A
+heterogeneous block (``DeckSpec.grains``, :mod:`bonded_lattice.grains`) has its
+grain ids and stiffness factors in the data file's ``Grains`` section, read
+into ``fix property/atom`` and named, with the strength options, to
+``pair_style lattice/bond`` (:class:`bonded_lattice.deck.PairStyle`).
 
 Two loading schedules:
 
@@ -49,12 +51,14 @@ from pathlib import Path
 from typing import TextIO
 
 from .conversion import BondParameters
+from .deck import (ATOM_DUMP_COLUMNS, BOND_COUNTS, PairStyle, atom_bond_counts, bond_counts,
+                   energy_budget, integrator, opening, smooth_wall, thermo)
+from .deck.pair import SHEAR_FRAMES
 from .grains import GrainPairOptions
 from .lattice import check_atom_style
 
 TESTS = ("tension", "compression", "elastic", "confined", "periodic")
 SCHEDULES = ("constant", "stepwise")
-SHEAR_FRAMES = ("fixed", "corotational")    # pair_style lattice/bond shear_frame
 
 
 @dataclass(frozen=True)
@@ -185,41 +189,16 @@ def _header(spec: DeckSpec) -> str:
     b = deck_bond(spec)
     periodic = spec.test == "periodic"
     boundary = "p p p" if periodic else ("f f p" if spec.dim == 2 else "f f f")
-    pair_args = "" if spec.shear_frame == "fixed" else " shear_frame " + spec.shear_frame
-    read_data = f"read_data       {spec.data_file}"
-    if spec.atom_style == "atomic":    # no per-atom diameter: one for every particle
-        pair_args = f" diameter {spec.d!r}" + pair_args
-    if spec.grains is not None:
-        pair_args = " " + spec.grains.pair_style_args() + pair_args
-        read_data = (
-            "# grain id and stiffness factor per particle, from the data file's Grains section;\n"
-            "# ghost yes: the pair style needs them for neighbours owned by other ranks\n"
-            "fix             grains all property/atom i_grain d_stiffness ghost yes\n"
-            + read_data + " fix grains NULL Grains")
-    opening = f"""# {title}
+    pair = PairStyle(b, spec.d, spec.atom_style, spec.grains, spec.shear_frame)
+    opening_text = f"""# {title}
 # Written by bonded_lattice.decks; edit freely.  Run: mpirun -np 2 lmp -in <this file>
 # Bond parameters: Kn {b.Kn:.6g} N/m, Ks {b.Ks:.6g} N/m, Xb {b.Xb:.6g} m,
 # Fs0 {b.Fs0:.6g} N, mu_p {b.mu_p:.6g}; particle diameter {spec.d:g} m.
 
-units           si
-dimension       {spec.dim}
-boundary        {boundary}
-atom_style      {spec.atom_style}
-newton          on
-{read_data}
-
-pair_style      lattice/bond{pair_args}
-{b.pair_coeff()}
-# a small skin keeps the search for new contacts cheap
-neighbor        {0.1 * spec.d:.6g} bin
-# neighbour and atom-sorting bins of one cutoff (LAMMPS' default of half a
-# cutoff takes 8x the bins in 3D, about 20 bytes per particle each)
-neigh_modify    every 1 delay 0 check yes binsize {1.1 * spec.d:.6g}
-atom_modify     sort 1000 {1.1 * spec.d:.6g}
-"""
+""" + opening(spec.dim, boundary, spec.atom_style, spec.data_file, pair)
     if periodic:
         lateral = spec.lateral_axes
-        text = opening + f"""
+        text = opening_text + f"""
 # strains from the box (the particles follow it: fix deform ... remap x)
 variable        L0 equal $(l{spec.axis})
 variable        strain equal (l{spec.axis}-v_L0)/v_L0
@@ -229,7 +208,7 @@ variable        strain equal (l{spec.axis}-v_L0)/v_L0
         mean = "+".join(f"(l{a}-v_L{a}0)/v_L{a}0" for a in lateral)
         return text + (f"variable        lateral equal ({mean})/{len(lateral)}\n"
                        "variable        gauge equal v_lateral\n")
-    return opening + f"""
+    return opening_text + f"""
 # extent of the block along the loading axis ({spec.axis})
 variable        lo0 equal $(bound(all,{spec.axis}min))
 variable        hi0 equal $(bound(all,{spec.axis}max))
@@ -308,9 +287,7 @@ def _loading(spec: DeckSpec) -> str:
 # fix deform maps the particles with the box (remap x): no platens, no end zones;
 # the lateral faces are held at zero stress by fix press/berendsen (relaxation
 # time about {pdamp:.3g} s x its modulus / the lattice's, a few dozen steps)
-fix             integrate all lattice/nve    # velocity Verlet; in 2D x and y only
-fix             damp all lattice/viscous {spec.eta:.6g}
-fix             strain all deform 1 {ax} erate {spec.strain_rate:.6g} remap x
+{integrator("all", spec.eta)}fix             strain all deform 1 {ax} erate {spec.strain_rate:.6g} remap x
 fix             free all press/berendsen {free} couple none modulus {spec.modulus:.6g}
 # stress (tension positive): the virial pressure of the bonds and fixes, no kinetic part
 compute         pvir all pressure NULL virial
@@ -343,9 +320,7 @@ velocity        all set 0 0 0 units box
 variable        s0 equal $(step)
 {variables}fix             ptop top move {move_top}
 fix             pbot bottom move {move_bot}
-fix             integrate inner lattice/nve    # velocity Verlet; in 2D x and y only
-fix             damp inner lattice/viscous {spec.eta:.6g}
-# stress (tension positive) from the force the block exerts on the end layers
+{integrator("inner", spec.eta)}# stress (tension positive) from the force the block exerts on the end layers
 compute         ftop top reduce sum f{ax}
 compute         fbot bottom reduce sum f{ax}
 variable        stress equal 0.5*(c_fbot-c_ftop)/{spec.area:.8g}
@@ -363,30 +338,29 @@ variable        stress equal 0.5*(c_fbot-c_ftop)/{spec.area:.8g}
             other = "y" if a == "x" else "x"
             area = (f"$((v_hi0-v_lo0)*(bound(all,{other}max)-bound(all,{other}min)))"
                     if spec.dim == 3 else "$(v_hi0-v_lo0)")
-            sides += (f"fix             side{a}lo all lattice/wall {a}lo $(bound(all,{a}min)-{r!r}) "
-                      f"{wall_kn:.6g} 0 0 servo {spec.confining:.6g} {area}\n"
-                      f"fix             side{a}hi all lattice/wall {a}hi $(bound(all,{a}max)+{r!r}) "
-                      f"{wall_kn:.6g} 0 0 servo {spec.confining:.6g} {area}\n")
+            servo = f"servo {spec.confining:.6g} {area}"
+            sides += (smooth_wall(f"side{a}lo", f"{a}lo", f"$(bound(all,{a}min)-{r!r})",
+                                  wall_kn, servo)
+                      + smooth_wall(f"side{a}hi", f"{a}hi", f"$(bound(all,{a}max)+{r!r})",
+                                    wall_kn, servo))
     if spec.schedule == "constant":
         title = f"moving in at {spec.speed:g} m/s"
         variables = ""
-        bottom = f"$(v_lo0-{r!r}) {wall_kn:.6g} 0 0 vel {spec.speed:.6g}"
-        top = f"$(v_hi0+{r!r}) {wall_kn:.6g} 0 0 vel {-spec.speed:.6g}"
+        platens = (smooth_wall("bottom", f"{ax}lo", f"$(v_lo0-{r!r})", wall_kn,
+                               f"vel {spec.speed:.6g}")
+                   + smooth_wall("top", f"{ax}hi", f"$(v_hi0+{r!r})", wall_kn,
+                                 f"vel {-spec.speed:.6g}"))
     else:
         title = f"jumping in by {spec.step_size:g} m every {spec.relax_steps} steps"
         jump = f"{spec.step_size:.6g}*ceil((step-v_s0)/{spec.relax_steps})"
         variables = (f"variable        s0 equal $(step)\n"
                      f"variable        wbot equal $(v_lo0-{r!r})+{jump}\n"
                      f"variable        wtop equal $(v_hi0+{r!r})-{jump}\n")
-        bottom = f"v_wbot {wall_kn:.6g} 0 0"
-        top = f"v_wtop {wall_kn:.6g} 0 0"
+        platens = (smooth_wall("bottom", f"{ax}lo", "v_wbot", wall_kn)
+                   + smooth_wall("top", f"{ax}hi", "v_wtop", wall_kn))
     return sides + f"""
 # ---- loading: smooth platens touching the end layers, {title} ----
-{variables}fix             bottom all lattice/wall {ax}lo {bottom}
-fix             top all lattice/wall {ax}hi {top}
-fix             integrate all lattice/nve    # velocity Verlet; in 2D x and y only
-fix             damp all lattice/viscous {spec.eta:.6g}
-# stress (tension positive) from the platen forces
+{variables}{platens}{integrator("all", spec.eta)}# stress (tension positive) from the platen forces
 variable        stress equal 0.5*(f_bottom[{k}]-f_top[{k}])/{spec.area:.8g}
 """
 
@@ -394,9 +368,9 @@ variable        stress equal 0.5*(f_bottom[{k}]-f_top[{k}])/{spec.area:.8g}
 def _output(spec: DeckSpec) -> str:
     dump = ""
     if spec.dump_every > 0:
-        dump = f"""dump            particles all custom {spec.dump_every} dump.lammpstrj id type x y z c_nbonds c_ntension c_nshear
-dump_modify     particles sort id format float %.17g
-"""
+        dump = (f"dump            particles all custom {spec.dump_every} dump.lammpstrj "
+                f"{ATOM_DUMP_COLUMNS}\n"
+                "dump_modify     particles sort id format float %.17g\n")
     halt = ""
     if spec.energy and spec.test != "elastic":
         halt += """# breaking heat and broken bonds at every step, to time the fracture (Liu 2017 reads
@@ -416,27 +390,19 @@ fix             stop all halt {spec.thermo_every} v_failed > 0.5 error continue
     if spec.energy:
         # after the fixes that add forces, as compute lattice/energy requires; the
         # end layers' prescribed motion does external work in tension
-        work = " work top bottom" if spec.test == "tension" else ""
-        energy = ("# energy budget: elastic, kinetic, gravity, viscous heat, breaking heat (normal,\n"
-                  "# shear), frictional heat, external work, total, balance error\n"
-                  f"compute         energy all lattice/energy{work}\n")
-        columns = " " + " ".join(f"c_energy[{k}]" for k in range(1, 11))
+        energy, columns = energy_budget("top bottom" if spec.test == "tension" else "")
+    table = thermo(f"step time v_strain v_lateral v_gauge v_stress {BOND_COUNTS} ke{columns}",
+                   spec.thermo_every, flush=True)
+    full = "modify sort id format float %.17g"
     return f"""
 # ---- output ----
-{energy}compute         bonds all lattice/bonds
-compute         nbonds all lattice/bonds
-compute         ntension all lattice/bonds peratom tension
-compute         nshear all lattice/bonds peratom shear
-thermo_style    custom step time v_strain v_lateral v_gauge v_stress c_bonds[1] c_bonds[2] c_bonds[3] c_bonds[4] ke{columns}
-thermo_modify   norm no flush yes
-thermo          {spec.thermo_every}
-timestep        {spec.dt:.6g}
+{energy}{bond_counts()}{atom_bond_counts()}{table}timestep        {spec.dt:.6g}
 # run 0 makes the bonds, so the first dump shows them
 run             0
 # full precision: displacements of 1e-7 m vanish in the default %g format
-write_dump      all custom dump.initial id type x y z c_nbonds c_ntension c_nshear modify sort id format float %.17g
+write_dump      all custom dump.initial {ATOM_DUMP_COLUMNS} {full}
 {dump}{halt}run             {spec.steps}
-write_dump      all custom dump.final id type x y z c_nbonds c_ntension c_nshear modify sort id format float %.17g
+write_dump      all custom dump.final {ATOM_DUMP_COLUMNS} {full}
 """
 
 

@@ -318,7 +318,8 @@ def test_atomic_decks_and_scenes():
     assert "atom_style      sphere" in scene_deck(scene)
     text = scene_deck(Scene("polycrystal", n_x=12, n_grains=3, atom_style="atomic"))
     assert "atom_style      atomic" in text
-    assert f"pair_style      lattice/bond diameter {D!r} grain" in text
+    assert "pair_style      lattice/bond grain i_grain" in text
+    assert f"boundary_strength 0.5 diameter {D!r}\n" in text
     with pytest.raises(ValueError, match="atom_style sphere"):
         Scene("expanding", atom_style="atomic")
 

@@ -2,8 +2,9 @@
 
 - :mod:`.dump`: text dumps of atoms (``dump custom``, ``write_dump``; one frame, or a
   trajectory through MDAnalysis) and of local quantities (``dump local`` of
-  ``compute lattice/bond/local``, the bond dumps);
+  ``compute lattice/bond/local``, the bond dumps: :func:`read_bond_dump`);
 - :mod:`.thermo`: the thermo tables of a LAMMPS screen output or log file;
+- :mod:`.table`: tables with a ``# name ...`` header line (the scene decks' ``scene.dat``);
 - :mod:`.data`: the sections of a data file that :func:`bonded_lattice.lattice.write_data`
   adds (``Grains``).
 
@@ -11,8 +12,9 @@ The library, the benchmarks and the tests read these files through these functio
 """
 
 from .data import GRAINS_SECTION, read_grains
-from .dump import read_atom_dump, read_frames, read_local_dump
+from .dump import read_atom_dump, read_bond_dump, read_frames, read_local_dump
+from .table import read_table
 from .thermo import Thermo, parse_thermo, read_thermo
 
-__all__ = ["GRAINS_SECTION", "Thermo", "parse_thermo", "read_atom_dump", "read_frames",
-           "read_grains", "read_local_dump", "read_thermo"]
+__all__ = ["GRAINS_SECTION", "Thermo", "parse_thermo", "read_atom_dump", "read_bond_dump",
+           "read_frames", "read_grains", "read_local_dump", "read_table", "read_thermo"]

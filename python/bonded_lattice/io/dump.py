@@ -57,6 +57,15 @@ def read_local_dump(path: str | Path) -> tuple[list[str], np.ndarray]:
     return _body(path, "ENTRIES")
 
 
+def read_bond_dump(path: str | Path) -> np.ndarray:
+    """Rows of a one-frame bond dump, one per bond: the ``dump local`` of ``compute
+    lattice/bond/local id1 id2 state x y z`` that the scene decks write
+    (:data:`bonded_lattice.deck.BOND_RECORDS`), columns id1, id2, state (0 intact, 1
+    broken in tension, 2 in shear, 3 contact), x, y, z; no bonds: a (0, 6) array."""
+    rows = read_local_dump(path)[1]
+    return rows if len(rows) else np.zeros((0, 6))
+
+
 _COLUMNS = ["id", "x", "y", "z"]
 
 
