@@ -40,6 +40,7 @@ from bonded_lattice.conversion import (
 )
 from bonded_lattice.rocks import ROCKS, Rock, get_rock, list_rocks, register_rock
 from helpers.materials import WORKED
+from helpers.single_unit import finite_strain_unit
 
 S2, S3 = math.sqrt(2.0), math.sqrt(3.0)
 QUARTZ = {"E": 90e9, "nu": 0.16, "Tu": 25e6, "Cu": 252e6, "mu_i": 1.0}
@@ -292,15 +293,13 @@ LOW_NU = [(2, 0.05, 25e6, 100e6, 1.0, False), (3, 0.05, 25e6, 100e6, 1.0, False)
 
 @pytest.mark.parametrize("dim,nu,Tu,Cu,mu_i,opens_first", LOW_NU)
 def test_c_open_above_cu_warns_with_the_units_strength(dim, nu, Tu, Cu, mu_i, opens_first):
-    """The strength in the warning against the exact-geometry unit of test_single_unit.
+    """The strength in the warning against the exact-geometry unit (helpers.single_unit).
 
     That reference solves the quasi-static unit with finite rotations (no small-strain
     closed form), so it checks the confinement argument independently.  Tolerance 1 %: the
     failure strains here are <= 2e-3, where the small-strain forms are within 0.5 % (measured
     0.2-0.5 %).
     """
-    from test_single_unit import finite_strain_unit
-
     with pytest.warns(UserWarning, match="C_open = .* exceeds Cu") as record:
         b = rock_to_bond(90e9, nu, Tu, Cu, mu_i, D, dim)
     strength = float(re.search(r"fails at (\S+) Pa", str(record[0].message)).group(1))

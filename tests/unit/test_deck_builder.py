@@ -15,8 +15,7 @@ from bonded_lattice.grains import GrainPairOptions
 from bonded_lattice.io import read_bond_dump, read_table
 from bonded_lattice.scenes import Scene, read_scene_dat
 from bonded_lattice.scenes import deck_text as scene_deck_text
-
-D = 1.0e-3
+from helpers.materials import D
 
 
 @pytest.mark.parametrize("atom_style", ["sphere", "atomic"])
