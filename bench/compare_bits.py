@@ -31,7 +31,7 @@ from pathlib import Path
 
 D = 1.0e-3
 # quartz (2D per metre of thickness, 3D) with a third of the shear strength,
-# as in tests/test_kernel_variants.py, so that bonds fail in both modes
+# as in tests/integration/test_kernel_variants.py, so that bonds fail in both modes
 COEFFS = {
     2: ["1 1 6.5874e10 2.3715e10 1.9011e-7 1.1e4 0.23915",
         "1 2 3.2937e10 2.3715e10 1.9011e-7 1.1e4 0.23915",

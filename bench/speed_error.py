@@ -7,7 +7,7 @@ One command runs the whole study and writes a Markdown report with PNG plots:
     python bench/speed_error.py --reuse         # rewrite the report from the cached runs
 
 1. Single-contact tests T1-T4 of Li et al. (2018), set up exactly as in
-   tests/test_single_contact.py (whose decks and analytic solutions this script
+   tests/validation/test_single_contact.py (whose decks and analytic solutions this script
    imports): error against the time step over eight values a factor 2 apart, the
    fitted convergence order, and the largest stable time step of the contact
    spring found by bisection, against Verlet's limit dt_c = 2 sqrt(m/k).
@@ -27,7 +27,7 @@ cached ones.  This script is the command-line driver; the analysis (runs, fits,
 plots, report) is the package's ``bonded_lattice.speed_error``, whose pure
 functions (Pareto front, convergence order, Verlet's discrete solution,
 bisection, the tolerance test, the recommendation rule) are tested by
-tests/test_speed_error.py.
+tests/unit/test_speed_error.py.
 """
 
 from __future__ import annotations

@@ -8,7 +8,7 @@ pre_commands, input_file, pair_style, pair_coeff, post_commands), and after
 (run_*) the pair energy (vdwl; lattice/bond has no Coulomb part, coul = 0), the
 pair virial (stress: xx yy zz xy xz yz, in energy units, summed over the atoms,
 as Pair::virial) and the force on every atom by ID, with 16 significant digits.
-The test (tests/test_force_style_yaml.py) runs the deck again and compares.
+The test (tests/integration/test_force_style_yaml.py) runs the deck again and compares.
 
 Regenerate (only with a reason, in its own commit, saying why the numbers moved:
 a deliberate change of the force law, its arithmetic or the deck; never to make
@@ -37,6 +37,7 @@ from pathlib import Path
 
 import numpy as np
 from bonded_lattice.io import read_atom_dump
+from helpers.materials import QUARTZ, QUARTZ_2D, QUARTZITE_3D, QUARTZITE_3D_BOND, coeffs
 
 FOLDER = Path(__file__).resolve().parent / "data" / "force-styles"
 CONFIGS = ("pair-lattice_bond_2d.yaml", "pair-lattice_bond_3d.yaml")
@@ -69,17 +70,17 @@ def deck_config(dim: int, pair_coeff: list[str]) -> dict:
 # where the random offsets press them together; 2-3 slides easily
 DECKS = {
     "pair-lattice_bond_2d.yaml": deck_config(2, [
-        "* * 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.23915",
+        f"* * {QUARTZ_2D}",
         "2 2 9.0e10 3.0e10 1.5e-7 2.0e4 0.5",
         "1 2 7.5e10 0.0 1.7e-7 3.0e4 0.3",
-        "1 3 6.5874e10 2.3715e10 1.9011e-7 3.6905e4 0.4 bond no",
+        f"1 3 {coeffs(QUARTZ[2], mu_p=0.4)} bond no",
         "2 3 9.0e10 3.0e10 1.5e-7 2.0e4 0.02 bond no",
     ]),
     "pair-lattice_bond_3d.yaml": deck_config(3, [
-        "* * 4.6794e7 8.0679e6 1.7037e-7 18.452 0.39645",
+        f"* * {QUARTZITE_3D}",
         "2 2 6.0e7 1.0e7 1.4e-7 15.0 0.5",
         "1 2 5.5e7 0.0 1.6e-7 16.0 0.3",
-        "1 3 4.6794e7 8.0679e6 1.7037e-7 18.452 0.4 bond no",
+        f"1 3 {coeffs(QUARTZITE_3D_BOND, mu_p=0.4)} bond no",
         "2 3 6.0e7 1.0e7 1.4e-7 15.0 0.02 bond no",
     ]),
 }

@@ -232,8 +232,9 @@ def write_doc(res: dict, v: Validation, doc: Path) -> None:
     add("Strengths with the papers' stepwise schedule (2D: 1.9e-10 / 1.9e-9 m per step and "
         "400 relaxation steps; 3D: 1.7e-10 / 1.7e-9 m and 100).  Cu falls below the formula "
         "because the inclined bonds rotate before they slide: the exact finite-strain path "
-        "gives -0.88% (2D) and -2.07% (3D) (`tests/test_single_unit.py`, which also checks "
-        "the units against it to 5e-5).  C_open is the last thermo row before the base bonds "
+        "gives -0.88% (2D) and -2.07% (3D) (`tests/validation/test_single_unit.py`, which "
+        "also checks the units against it to 5e-5).  C_open is the last thermo row before the "
+        "base bonds "
         "open, one load step early.")
     add("")
     for dim in (2, 3):
@@ -355,7 +356,7 @@ def write_doc(res: dict, v: Validation, doc: Path) -> None:
         "close to the paper's.  The kinetic energy peaks at the fractions in the table (the paper: 16.2%); "
         "we have not found why the stepwise run converts less of the work into motion.  "
         "The balance error is the "
-        "integrator's: it falls fourfold when dt is halved (`tests/test_energy_balance.py`).")
+        "integrator's: it falls fourfold when dt is halved (`tests/validation/test_energy_balance.py`).")
     add("")
     add("![energy and heat, tension](img/energy_3d_tension.png)")
     add("![energy and heat, compression](img/energy_3d_compression.png)")

@@ -2,7 +2,7 @@
 (2018) against the time step (convergence order), and the largest stable time step of a
 contact spring (a bonded T1: a harmonic oscillator) against Verlet's limit 2 sqrt(m/k).
 
-The decks, constants and analytic solutions are those of tests/test_single_contact.py,
+The decks, constants and analytic solutions are those of tests/validation/test_single_contact.py,
 loaded by the caller as a module ``sc`` (``deck``, ``simulate``, ``analytic_normal``,
 ``analytic_wall``, ``ETA``, ``KN``, ``KS``, ``MU``, ``MASS``, ``V0_NORMAL``, ``T_END``).
 """
@@ -88,7 +88,7 @@ def run_contact(settings: Settings, out: Path, reuse: bool,
     """Part 1: convergence in dt for T1-T4, the stability limit of the contact spring.
 
     contact_tests: loads the single-contact tests' module (their decks, constants and
-    analytic solutions; the driver loads tests/test_single_contact.py), called only when
+    analytic solutions; the driver loads tests/validation/test_single_contact.py), called only when
     the runs are not cached.  The result is cached in ``out/single_contact.json`` (kept
     with ``reuse`` when it has the same time steps and tests)."""
     cache = out / "single_contact.json"

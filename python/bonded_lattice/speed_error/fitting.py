@@ -1,5 +1,5 @@
 """The pure functions of the speed-against-error study (tested by
-tests/test_speed_error.py): Pareto front, convergence order, Verlet's discrete harmonic
+tests/unit/test_speed_error.py): Pareto front, convergence order, Verlet's discrete harmonic
 oscillator and its growth factor, the bisection of a stability limit, the stability test of
 an oscillator run, the papers'-accuracy test and the recommendation rule."""
 

@@ -161,7 +161,7 @@ def overview_section(L: list[str], cmd: str, quick: bool, contact: dict, lat: di
     # ---------------- part 1 ----------------
     add("## 1. Single-contact tests (Li et al. 2018): error against dt")
     add("")
-    add("The decks and analytic solutions of `tests/test_single_contact.py` (m = 2.1651e7 kg, "
+    add("The decks and analytic solutions of `tests/validation/test_single_contact.py` (m = 2.1651e7 kg, "
         "Kn = Ks = 5.5e9 N/m, runs to 0.4 s), at eight time steps a factor 2 apart around the "
         "paper's 1e-3 s.  Error: max |y - analytic| over the whole run, and over the smooth "
         "first phase (before the first kink in the force: contact opening or stick-to-slip, "

@@ -1,0 +1,223 @@
+"""Command lattice/quasistatic on a chain worked out by hand, and on a heterogeneous block on
+1 and 2 ranks.
+
+The chain: four particles 1-2-3-4 in a row (types 1-4), bonds 1-2, 2-3, 3-4 with the same Kn
+and breaking stretches Xb = (1, 1.05, 2) X0. Particle 1 is held, particle 4 is moved by u and
+held, 2 and 3 move along the chain. In series every bond carries the same force, so each
+stretches by u/3 and its ratio to the threshold is (u/3)/Xb. With u/3 = 1.1 X0 the ratios are
+1.1, 1.048 and 0.55: `break one` breaks bond 1-2 only (the chain then unloads and 2-3 never
+breaks); `break all` breaks 1-2 and 2-3 together."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+from bonded_lattice.io import read_local_dump
+from helpers.decks import (atoms_at, block_2d_deck, opening, pair_lines, patchy_grains, run_deck,
+                           sphere_props)
+from helpers.materials import D, QUARTZ, coeffs
+
+KN, X0 = QUARTZ[2].Kn, 1.0e-7
+CHAIN_BOX = "-2e-3 5e-3 -2e-3 2e-3 -5e-4 5e-4"
+LMP_STYLE_LOCAL, LMP_TYPE_ARRAY = 2, 2
+
+
+def chain(lmp, ks: float = 0.0) -> None:
+    lmp.commands_string(opening(box=CHAIN_BOX, types=4)
+                        + atoms_at([(0, 0), (D, 0), (2 * D, 0), (3 * D, 0)], types=[1, 2, 3, 4])
+                        + sphere_props() + pair_lines({
+                            "* *": f"{KN} {ks} {10 * X0} 1.0e6 0.0 bond no",
+                            "1 2": f"{KN} {ks} {1.00 * X0} 1.0e6 0.0",
+                            "2 3": f"{KN} {ks} {1.05 * X0} 1.0e6 0.0",
+                            "3 4": f"{KN} {ks} {2.00 * X0} 1.0e6 0.0"}) + """\
+neighbor        1.0e-4 bin
+group           ends type 1 4
+fix             line all setforce NULL 0 0
+fix             hold ends setforce 0 0 0
+compute         b all lattice/bonds
+compute         bl all lattice/bond/local id1 id2 state ratio
+thermo_style    custom step pe c_b[1] c_b[2]
+min_style       fire
+run             0
+""")
+
+
+def pull(lmp, u: float) -> None:
+    lmp.command("group far type 4")
+    lmp.command(f"displace_atoms far move {u} 0 0 units box")
+
+
+def states(lmp) -> dict[tuple[int, int], tuple[int, float]]:
+    # the springs of the last force evaluation; no run 0 (it would break overloaded bonds)
+    table = lmp.numpy.extract_compute("bl", LMP_STYLE_LOCAL, LMP_TYPE_ARRAY)
+    return {(int(r[0]), int(r[1])): (int(r[2]), float(r[3])) for r in table}
+
+
+CHAIN = [(1, 2), (2, 3), (3, 4)]
+
+
+def pulled_chain(lmp, stretch: float, args: str) -> None:
+    """The chain, pulled until each bond would stretch by ``stretch`` X0 in series, then
+    ``lattice/quasistatic args``."""
+    chain(lmp)
+    pull(lmp, 3 * stretch * X0)
+    lmp.command(f"lattice/quasistatic {args}")
+
+
+def chain_states(lmp) -> list[int]:
+    """The states of the chain's bonds 1-2, 2-3, 3-4 (0 intact, 1 broken in tension)."""
+    s = states(lmp)
+    return [s[bond][0] for bond in CHAIN]
+
+
+def test_break_one_breaks_the_most_overstressed_bond_only(lmp_instance):
+    lmp = lmp_instance
+    pulled_chain(lmp, 0.9, "ftol 1.0e-6")
+    s = states(lmp)
+    # below every threshold: the relaxed chain shares the stretch equally
+    assert [s[bond][0] for bond in CHAIN] == [0, 0, 0]
+    np.testing.assert_allclose([s[bond][1] for bond in CHAIN],
+                               [0.9, 0.9 / 1.05, 0.45], rtol=1e-6)
+    pull(lmp, 3 * 0.2 * X0)  # u/3 = 1.1 X0
+    lmp.command("lattice/quasistatic ftol 1.0e-6 break one")
+    s = states(lmp)
+    assert s[(1, 2)][0] == 1  # broken in tension
+    assert s[(2, 3)][0] == 0 and s[(3, 4)][0] == 0
+    # the chain 2-3-4 has unloaded: particles 2 and 3 hang from particle 4 at rest length
+    x = lmp.numpy.extract_atom("x")
+    ids = lmp.numpy.extract_atom("id")
+    pos = {int(t): x[k, 0] for k, t in enumerate(ids)}
+    assert pos[4] - pos[3] == pytest.approx(D, abs=1e-6 / KN * 10)
+    assert pos[3] - pos[2] == pytest.approx(D, abs=1e-6 / KN * 10)
+    assert s[(2, 3)][1] == pytest.approx(0.0, abs=1e-6)
+
+
+def test_break_all_breaks_every_bond_past_its_threshold(lmp_instance):
+    lmp = lmp_instance
+    pulled_chain(lmp, 1.1, "ftol 1.0e-6 break all")
+    assert chain_states(lmp) == [1, 1, 0]
+
+
+def test_maxbreak_zero_only_relaxes(lmp_instance):
+    lmp = lmp_instance
+    pulled_chain(lmp, 1.1, "ftol 1.0e-6 maxbreak 0")
+    assert chain_states(lmp) == [0, 0, 0]
+    assert states(lmp)[(1, 2)][1] == pytest.approx(1.1, rel=1e-6)
+
+
+def test_damped_dynamics_with_shear_springs_gives_the_same_order(lmp_instance):
+    """relax run N: the input's integrator and damping; shear springs allowed (a straight
+    chain does not load them)."""
+    lmp = lmp_instance
+    chain(lmp, ks=2.0e10)
+    lmp.command("fix nve all lattice/nve")
+    lmp.command("fix damp all lattice/viscous 1.0e4")  # about 0.4 of critical
+    lmp.command("timestep 2.0e-8")
+    pull(lmp, 3 * 1.1 * X0)
+    lmp.command("lattice/quasistatic ftol 1.0e-3 relax run 200 maxsteps 200000")
+    assert chain_states(lmp) == [1, 0, 0]
+
+
+def test_minimize_with_shear_springs_is_refused(tmp_path):
+    deck = block_2d_deck("-2 14 -2 14", "0 10 0 10") + "lattice/quasistatic ftol 1.0e-6\n"
+    result = run_deck(deck, tmp_path)
+    assert result.returncode != 0
+    assert "relax minimize needs bonds without shear springs" in result.output
+    assert "Use relax run N" in result.output
+
+
+@pytest.mark.parametrize("args, message", [
+    ("ftol 0", r"ftol 0 is out of range: need > 0"),
+    ("tol 1", r"lattice/quasistatic needs: ftol F"),
+    ("ftol 1 break some", r"break some is not valid: use one or all"),
+    ("ftol 1 relax run 0", r"relax run 0 is out of range: need >= 1 step"),
+    ("ftol 1 relax fire", r"relax fire is not valid: use minimize or run N"),
+    ("ftol 1 maxsteps 0", r"maxsteps 0 is out of range"),
+    ("ftol 1 colour red", r"Unknown lattice/quasistatic keyword colour"),
+])
+def test_bad_quasistatic_input_names_the_value(tmp_path, args, message):
+    deck = block_2d_deck("-2 14 -2 14", "0 10 0 10") + f"lattice/quasistatic {args}\n"
+    result = run_deck(deck, tmp_path)
+    assert result.returncode != 0
+    assert re.search(message, result.output), result.output[-1500:]
+
+
+# Ks = 0 and mu_p = 0: the chain's central springs, in a heterogeneous block
+QS_BLOCK = block_2d_deck("-2 24 -2 24", "0 20 0 20", coeffs=None) + patchy_grains(
+    "5.0e-3", 7, 0.4, 2.3) + pair_lines(coeffs(QUARTZ[2], Ks=0.0, mu_p=0.0),
+                                        "stiffness d_stiff grain i_grain strength 0.7 1.3 seed 31") + """\
+region          bot block INF INF INF 0.5 INF INF
+region          top block INF INF 16.5 INF INF INF
+group           bot region bot
+group           top region top
+group           ends union bot top
+fix             hold ends setforce 0 0 0
+compute         b all lattice/bonds
+thermo_style    custom step pe c_b[1] c_b[2] c_b[3]
+thermo          100000
+min_style       fire
+variable        k loop 6
+label           loop
+displace_atoms  top move 0 6.0e-7 0 units box
+lattice/quasistatic ftol 1.0e-3 break one
+next            k
+jump            SELF loop
+compute         bl all lattice/bond/local id1 id2 state
+dump            d all local 1 bonds.txt c_bl[*]
+run             0
+"""
+
+
+def test_quasistatic_block_breaks_the_same_bonds_on_one_and_two_ranks(tmp_path):
+    tables = {}
+    for np_ in (1, 2):
+        work = tmp_path / f"np{np_}"
+        result = run_deck(QS_BLOCK, work, np=np_)
+        assert result.returncode == 0, result.output[-2000:]
+        counts = [int(m) for m in re.findall(r"lattice/quasistatic: (\d+) bonds broke", result.output)]
+        rows = read_local_dump(work / "bonds.txt")[1].astype(int)
+        tables[np_] = (counts, rows[np.lexsort((rows[:, 1], rows[:, 0]))])
+    (c1, t1), (c2, t2) = tables[1], tables[2]
+    assert sum(c1) > 5, "the test must break bonds"
+    assert c1 == c2
+    np.testing.assert_array_equal(t1, t2)
+
+
+# three particles in a row, bonds 1-2 and 2-3 of Ks = 0 and Xb = X0
+CHAIN_DECK = (opening(box=CHAIN_BOX) + atoms_at([(0, 0), (1.0e-3, 0), (2.0e-3, 0)]) + sphere_props()
+              + pair_lines(coeffs(QUARTZ[2], Ks=0, Xb=X0, Fs0=1.0e6, mu_p=0.0)) + """\
+neighbor        1.0e-4 bin
+group           ends id 1 3
+fix             line all setforce NULL 0 0
+fix             hold ends setforce 0 0 0
+compute         b all lattice/bonds
+min_style       fire
+run             0
+group           far id 3
+displace_atoms  far move 3.0e-7 0 0 units box
+{thermo}
+lattice/quasistatic ftol 1.0e-6 quiet {quiet}
+print           "BROKEN $(c_b[2])"
+""")
+
+
+@pytest.mark.parametrize("quiet", ["yes", "no"])
+def test_quiet_relaxations_print_only_the_summary(tmp_path, quiet):
+    result = run_deck(CHAIN_DECK.format(quiet=quiet, thermo=""), tmp_path)
+    assert result.returncode == 0, result.output[-2000:]
+    # one of the two bonds (stretched 1.5 Xb each) breaks, the other unloads
+    assert "BROKEN 1" in result.output
+    assert "lattice/quasistatic: 1 bonds broke (1 in tension, 0 in shear) in 2 relaxations" in \
+        result.output
+    assert ("Minimization stats" in result.output) == (quiet == "no")
+
+
+def test_an_error_in_a_quiet_relaxation_is_printed(tmp_path):
+    # a thermo variable that fails only when evaluated, in the first relaxation
+    thermo = "variable        bad equal v_missing\nthermo_style    custom step v_bad"
+    result = run_deck(CHAIN_DECK.format(quiet="yes", thermo=thermo), tmp_path)
+    assert result.returncode != 0
+    assert re.search(r"ERROR: Invalid variable reference v_missing.*\(in lattice/quasistatic: "
+                     r"minimize", result.output), result.output[-1500:]
