@@ -210,23 +210,32 @@ def heterogeneity_options(p: argparse.ArgumentParser) -> None:
     add(g, "grain_seed", model["seed"])
 
 
-# the options only ``scene`` takes that set one number of the Scene: {field: (flag, help)};
-# the type and the default are the field's
+# the options only ``scene`` takes that set one number of the Scene, by the group in which
+# ``scene --help`` lists them: {group: {field: (flag, help)}}; the type and the default are
+# the field's
 SCENE_NUMBERS = {
-    "n_y": ("--ny", "rows (default: a square box)"),
-    "n_steps": ("--steps", "strain steps (default %(default)s)"),
-    "strain_step": ("--strain-step", "strain (or grain growth) per step (default %(default)g)"),
-    "ftol": ("--ftol", "relaxation tolerance, fraction of Kn Xb (default %(default)g)"),
-    "dt_fraction": ("--dt-fraction", "dynamic: time step as a fraction of the critical one "
-                    "(default %(default)s, at most 0.5)"),
-    "layer_thickness": ("--layer-thickness", "layer thickness, fraction of the box height "
-                        "(default %(default)s)"),
-    "layer_contrast": ("--contrast", "layer stiffness / matrix stiffness (default %(default)s)"),
-    "n_expanding": ("--expanding", "growing grains (default %(default)s)"),
-    "output_every": ("--output-every", "strain steps between lines of scene.dat (dynamic; "
-                     "default %(default)s)"),
-    "bond_dumps": ("--bond-dumps", "dump the bond records every this many strain steps (0: "
-                   "only at the end)"),
+    "box and loading": {
+        "n_y": ("--ny", "rows (default: a square box)"),
+        "n_steps": ("--steps", "strain steps (default %(default)s)"),
+        "strain_step": ("--strain-step", "strain (or grain growth) per step (default "
+                        "%(default)g)"),
+        "ftol": ("--ftol", "relaxation tolerance, fraction of Kn Xb (default %(default)g)"),
+        "dt_fraction": ("--dt-fraction", "dynamic: time step as a fraction of the critical "
+                        "one (default %(default)s, at most 0.5)"),
+    },
+    "layer and growing grains": {
+        "layer_thickness": ("--layer-thickness", "layer thickness, fraction of the box "
+                            "height (default %(default)s)"),
+        "layer_contrast": ("--contrast", "layer stiffness / matrix stiffness (default "
+                           "%(default)s)"),
+        "n_expanding": ("--expanding", "growing grains (default %(default)s)"),
+    },
+    "output": {
+        "output_every": ("--output-every", "strain steps between lines of scene.dat "
+                         "(dynamic; default %(default)s)"),
+        "bond_dumps": ("--bond-dumps", "dump the bond records every this many strain steps "
+                       "(0: only at the end)"),
+    },
 }
 
 
@@ -244,8 +253,10 @@ def scene_options(p: argparse.ArgumentParser) -> None:
         "(default %(default)s)")
     p.add_argument("--bond", type=float, nargs=2, metavar=("Kn", "Xb"),
                    help="central-spring parameters directly (Ks = mu_p = 0)")
-    for name, (flag, text) in SCENE_NUMBERS.items():
-        p.add_argument(flag, type=type(s[name]), default=s[name], help=text)
+    for title, numbers in SCENE_NUMBERS.items():
+        group = p.add_argument_group(title)
+        for name, (flag, text) in numbers.items():
+            group.add_argument(flag, type=type(s[name]), default=s[name], help=text)
     add(p, "crossings", s["crossings"],
         help="dynamic: P-wave crossings of the box over the whole loading (default %(default)g)")
     add(p, "damping", s["damping"], help="dynamic: factor on the papers' damping "
