@@ -59,6 +59,11 @@ from .lattice import check_atom_style
 from .schedules import SCHEDULES  # the loading schedules' one vocabulary
 
 TESTS = ("tension", "compression", "elastic", "confined", "periodic")
+# the per-step log of a deck with the energy budget (fix ave/time, read by
+# io.read_ave_time): the breaking heat of the normal and of the shear springs
+# (compute lattice/energy) and the bonds broken in tension and in shear
+BREAKING_LOG = "breaking.dat"
+BREAKING_COLUMNS = ("c_energy[5]", "c_energy[6]", "c_bonds[2]", "c_bonds[3]")
 
 
 @dataclass(frozen=True)
@@ -373,9 +378,9 @@ def _output(spec: DeckSpec) -> str:
                 "dump_modify     particles sort id format float %.17g\n")
     halt = ""
     if spec.energy and spec.test != "elastic":
-        halt += """# breaking heat and broken bonds at every step, to time the fracture (Liu 2017 reads
+        halt += f"""# breaking heat and broken bonds at every step, to time the fracture (Liu 2017 reads
 # the crack's crossing time off the breaking heat)
-fix             breaklog all ave/time 1 1 1 c_energy[5] c_energy[6] c_bonds[2] c_bonds[3] file breaking.dat
+fix             breaklog all ave/time 1 1 1 {" ".join(BREAKING_COLUMNS)} file {BREAKING_LOG}
 """
     if spec.test != "elastic" and spec.halt_fraction > 0:
         halt += f"""# stop once the block has failed: |stress| below {spec.halt_fraction:g} of its peak so far,

@@ -24,8 +24,9 @@ from .conversion import (
     paper_damping_3d,
     rock_to_bond,
 )
-from .decks import DeckSpec, write_deck
+from .decks import BREAKING_COLUMNS, BREAKING_LOG, DeckSpec, write_deck
 from .grains import GrainPairOptions
+from .io.ave_time import read_ave_time
 from .lattice import Lattice, close_packed_block_3d, hex_block_2d, write_data
 from .periodic import paper_cell, periodic_cell
 from .plotting import broken_bond_map_png, energy_png, stress_strain_png
@@ -358,7 +359,7 @@ class RockTest(Study):
             "first_break_stress": got.first_break,
             "nu_all_particles": got.nu_all,
             "measured_from_dump": self.from_dump,
-            "energy": energy_summary(self.thermo, self.out / "breaking.dat", plan.dt)
+            "energy": energy_summary(self.thermo, self.out / BREAKING_LOG, plan.dt)
             if self.energy else None,
             "lateral_width_m": self.lattice.width,
             "wall_time_s": result.wall_time,
@@ -395,19 +396,20 @@ def breaking_duration(path: str | Path, dt: float, fraction: float = 0.02) -> fl
     """Time from ``fraction`` to ``1 - fraction`` of the final breaking heat, in s.
 
     Reads the per-step log ``breaking.dat`` of a deck with the energy budget
-    (columns: step, breaking heat normal, shear, bonds broken in tension, in shear).
+    (:data:`bonded_lattice.decks.BREAKING_COLUMNS`, by :func:`bonded_lattice.io.read_ave_time`).
     """
     path = Path(path)
     if not path.exists():
         return None
-    rows = np.loadtxt(path, comments="#", ndmin=2)
-    if len(rows) == 0:
+    log = read_ave_time(path)
+    step = log["TimeStep"]
+    if len(step) == 0:
         return None
-    heat = rows[:, 1] + rows[:, 2]
+    heat = log[BREAKING_COLUMNS[0]] + log[BREAKING_COLUMNS[1]]
     if heat[-1] <= 0:
         return None
-    onset = rows[int(np.argmax(heat > fraction * heat[-1])), 0]
-    end = rows[int(np.argmax(heat >= (1 - fraction) * heat[-1])), 0]
+    onset = step[int(np.argmax(heat > fraction * heat[-1]))]
+    end = step[int(np.argmax(heat >= (1 - fraction) * heat[-1]))]
     return float((end - onset) * dt)
 
 

@@ -1,0 +1,38 @@
+"""The files of LAMMPS' ``fix ave/time ... file`` in scalar mode (one line per output step).
+
+Such a file starts with two comment lines, ``# Time-averaged data for fix ID`` and ``#
+TimeStep name name ...``, then one line of numbers per output step.  The energy-budget decks
+write ``breaking.dat`` this way (step, the breaking heat of the normal and of the shear springs,
+the bonds broken in tension and in shear: :mod:`bonded_lattice.decks`).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+HEADER = "# Time-averaged data for fix"
+
+
+def read_ave_time(path: str | Path) -> dict[str, np.ndarray]:
+    """The columns of a ``fix ave/time`` file by the names of its header (``TimeStep`` first).
+
+    A file with the header and no data yet gives empty columns; a file that is not a
+    scalar-mode ``fix ave/time`` file raises ``ValueError`` naming the file and what is wrong.
+    """
+    path = Path(path)
+    with open(path) as f:
+        first, second, third = f.readline(), f.readline(), f.readline()
+    # vector mode adds a third header line, '# Row name ...', and one block of rows per step
+    if (not first.startswith(HEADER) or not second.startswith("# TimeStep")
+            or third.startswith("# Row")):
+        raise ValueError(f"{path}: not a 'fix ave/time' file in scalar mode: the first two "
+                         f"lines must be '{HEADER} ID' and '# TimeStep name ...'")
+    names = second[1:].split()
+    rows = np.loadtxt(path, comments="#", ndmin=2)
+    if rows.size and rows.shape[1] != len(names):
+        raise ValueError(f"{path}: {rows.shape[1]} values per line for the {len(names)} "
+                         f"columns {names}")
+    rows = rows.reshape(-1, len(names))
+    return {name: rows[:, k] for k, name in enumerate(names)}
