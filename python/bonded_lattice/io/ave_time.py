@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .table import named_columns
+
 HEADER = "# Time-averaged data for fix"
 
 
@@ -29,10 +31,4 @@ def read_ave_time(path: str | Path) -> dict[str, np.ndarray]:
             or third.startswith("# Row")):
         raise ValueError(f"{path}: not a 'fix ave/time' file in scalar mode: the first two "
                          f"lines must be '{HEADER} ID' and '# TimeStep name ...'")
-    names = second[1:].split()
-    rows = np.loadtxt(path, comments="#", ndmin=2)
-    if rows.size and rows.shape[1] != len(names):
-        raise ValueError(f"{path}: {rows.shape[1]} values per line for the {len(names)} "
-                         f"columns {names}")
-    rows = rows.reshape(-1, len(names))
-    return {name: rows[:, k] for k, name in enumerate(names)}
+    return named_columns(path, second[1:].split())

@@ -29,9 +29,15 @@ def read_table(path: str | Path, names: Sequence[str] | None = None) -> dict[str
         raise ValueError(f"{path}: the first line is not a '# name name ...' header")
     if names is not None and list(names) != header:
         raise ValueError(f"{path}: the columns are {header}: need {list(names)}")
+    return named_columns(path, header)
+
+
+def named_columns(path: Path, names: Sequence[str]) -> dict[str, np.ndarray]:
+    """The numbers of a text file (``#`` lines skipped) as the columns ``names``; a line with
+    another count of values raises ``ValueError`` naming the file and the columns."""
     rows = np.loadtxt(path, comments="#", ndmin=2)
-    if rows.size and rows.shape[1] != len(header):
-        raise ValueError(f"{path}: {rows.shape[1]} values per line for the {len(header)} "
-                         f"columns {header}")
-    rows = rows.reshape(-1, len(header))
-    return {name: rows[:, k] for k, name in enumerate(header)}
+    if rows.size and rows.shape[1] != len(names):
+        raise ValueError(f"{path}: {rows.shape[1]} values per line for the {len(names)} "
+                         f"columns {list(names)}")
+    rows = rows.reshape(-1, len(names))
+    return {name: rows[:, k] for k, name in enumerate(names)}
