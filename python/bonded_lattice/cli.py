@@ -94,12 +94,16 @@ def cmd_run(args: argparse.Namespace) -> int:
         e = summary["energy"]
         print(f"energy: external work {e['external_work']:.4g} J, balance error "
               f"{e['balance_error']:.3g} J (at most {e['max_balance_ratio']:.2g} of the work), "
-              f"peak kinetic energy {100 * e['peak_kinetic_fraction']:.1f}% of the work")
+              f"peak kinetic energy {100 * e['peak_kinetic_fraction']:.1f}% of the work "
+              "(thermo rows)" + ("" if e["peak_kinetic_fraction_every_step"] is None else
+                                 f", {100 * e['peak_kinetic_fraction_every_step']:.1f}% (every "
+                                 "step)"))
         duration = e["breaking_duration_s"]
         if duration:
             speed = summary["lateral_width_m"] / duration
             print(f"bonds broke within {1e6 * duration:.3g} us (2% to 98% of the breaking heat, "
-                  f"every step); block width / duration = {speed:.3g} m/s")
+                  f"every step; {1e6 * e['breaking_duration_full_s']:.3g} us from its start to "
+                  f"its end); block width / duration = {speed:.3g} m/s")
     print(f"results in {args.out}: summary.json, stress_strain.png"
           + (", broken_bonds.png" if args.test != "elastic" else "")
           + (", energy.png" if args.energy else ""))

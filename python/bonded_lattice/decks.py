@@ -61,9 +61,12 @@ from .schedules import SCHEDULES  # the loading schedules' one vocabulary
 TESTS = ("tension", "compression", "elastic", "confined", "periodic")
 # the per-step log of a deck with the energy budget (fix ave/time, read by
 # io.read_ave_time): the breaking heat of the normal and of the shear springs
-# (compute lattice/energy) and the bonds broken in tension and in shear
+# (compute lattice/energy), the bonds broken in tension and in shear, the kinetic
+# energy and the external work (the peak kinetic fraction at every step, not only
+# at the thermo rows: a failure can last fewer steps than a thermo interval)
 BREAKING_LOG = "breaking.dat"
-BREAKING_COLUMNS = ("c_energy[5]", "c_energy[6]", "c_bonds[2]", "c_bonds[3]")
+BREAKING_COLUMNS = ("c_energy[5]", "c_energy[6]", "c_bonds[2]", "c_bonds[3]", "c_energy[2]",
+                    "c_energy[8]")
 
 
 @dataclass(frozen=True)
@@ -378,9 +381,9 @@ def _output(spec: DeckSpec) -> str:
                 "dump_modify     particles sort id format float %.17g\n")
     halt = ""
     if spec.energy and spec.test != "elastic":
-        halt += f"""# breaking heat and broken bonds at every step, to time the fracture (Liu 2017 reads
+        halt += f"""# breaking heat, broken bonds, kinetic energy and work at every step, to time the fracture (Liu 2017 reads
 # the crack's crossing time off the breaking heat)
-fix             breaklog all ave/time 1 1 1 {" ".join(BREAKING_COLUMNS)} file {BREAKING_LOG}
+fix             breaklog all ave/time 1 1 1 {" ".join(BREAKING_COLUMNS)} file {BREAKING_LOG} format " %.17g"
 """
     if spec.test != "elastic" and spec.halt_fraction > 0:
         halt += f"""# stop once the block has failed: |stress| below {spec.halt_fraction:g} of its peak so far,

@@ -397,7 +397,11 @@ def breaking_duration(path: str | Path, dt: float, fraction: float = 0.02) -> fl
 
     Reads the per-step log ``breaking.dat`` of a deck with the energy budget
     (:data:`bonded_lattice.decks.BREAKING_COLUMNS`, by :func:`bonded_lattice.io.read_ave_time`).
+    ``fraction = 0`` is the 2017 paper's definition: from the first step with breaking heat to
+    the step the heat reaches its final value.
     """
+    if not 0.0 <= fraction < 0.5:
+        raise ValueError(f"fraction = {fraction} is out of range: need 0 <= fraction < 0.5")
     path = Path(path)
     if not path.exists():
         return None
@@ -413,6 +417,14 @@ def breaking_duration(path: str | Path, dt: float, fraction: float = 0.02) -> fl
     return float((end - onset) * dt)
 
 
+def peak_kinetic_fraction(kinetic: np.ndarray, work: np.ndarray) -> float:
+    """The largest kinetic energy / |external work| once the work exceeds 1% of its final
+    value (before that the ratio of two small numbers carries the start-up transient)."""
+    work = np.abs(np.asarray(work, dtype=float))
+    rows = work > 0.01 * work[-1] if len(work) else np.zeros(0, dtype=bool)
+    return float((np.asarray(kinetic)[rows] / work[rows]).max()) if rows.any() else 0.0
+
+
 def energy_summary(thermo: dict, breaking_log: str | Path, dt: float) -> dict:
     """Final energy budget (J; per metre of thickness in 2D) and the balance quality.
 
@@ -425,11 +437,17 @@ def energy_summary(thermo: dict, breaking_log: str | Path, dt: float) -> dict:
     balance = np.abs(thermo["c_energy[10]"])
     rows = work > 0.01 * work[-1]
     final["max_balance_ratio"] = float((balance[rows] / work[rows]).max()) if rows.any() else 0.0
-    kinetic = thermo["c_energy[2]"]
-    final["peak_kinetic_fraction"] = float((kinetic / np.maximum(work, 1e-300))[rows].max()) \
-        if rows.any() else 0.0
-    # the time the bonds take to break, at every step (strength decks log it)
+    final["peak_kinetic_fraction"] = peak_kinetic_fraction(thermo["c_energy[2]"], work)
+    # at every step (strength decks log it): the peak kinetic fraction, and the time the
+    # bonds take to break, from 2% to 98% of the breaking heat and from its start to its end
+    final["peak_kinetic_fraction_every_step"] = None
     final["breaking_duration_s"] = breaking_duration(breaking_log, dt)
+    final["breaking_duration_full_s"] = breaking_duration(breaking_log, dt, fraction=0.0)
+    if Path(breaking_log).exists():
+        log = read_ave_time(breaking_log)
+        if "c_energy[8]" in log and len(log["TimeStep"]):
+            final["peak_kinetic_fraction_every_step"] = peak_kinetic_fraction(
+                log["c_energy[2]"], log["c_energy[8]"])
     return final
 
 

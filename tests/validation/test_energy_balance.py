@@ -170,6 +170,13 @@ def test_fracture_tests_close_the_balance(tmp_path, dim, n, test):
         assert e["breaking_heat_normal"] > 0 and e["breaking_heat_shear"] > 0
         assert e["total"] == pytest.approx(e["external_work"], rel=1e-3)
     assert runs[0]["max_balance_ratio"] / runs[1]["max_balance_ratio"] > 2.5
+    for e in runs:
+        # breaking.dat logs every step: its peak kinetic fraction is a maximum over a
+        # superset of the thermo rows' steps (to the thermo rows' 8 printed digits), and the
+        # start-to-end duration contains the 2%-98% one
+        every_step, rows = e["peak_kinetic_fraction_every_step"], e["peak_kinetic_fraction"]
+        assert every_step >= rows * (1 - 1e-7) and rows > 0
+        assert e["breaking_duration_full_s"] >= e["breaking_duration_s"] > 0
     if test == "compression":
         # bonds broken in shear slide: frictional heat from the contacts
         assert runs[0]["frictional_heat"] > 0.1 * runs[0]["external_work"]
