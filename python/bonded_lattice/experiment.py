@@ -393,19 +393,21 @@ ENERGY_NAMES = ("elastic", "kinetic", "gravitational", "viscous_heat", "breaking
 
 
 def breaking_duration(path: str | Path, dt: float, fraction: float = 0.02) -> float | None:
-    """Time from ``fraction`` to ``1 - fraction`` of the final breaking heat, in s.
+    """Time from ``fraction`` to ``1 - fraction`` of the final breaking heat, in s, from the
+    per-step log ``breaking.dat`` of a deck with the energy budget
+    (:data:`bonded_lattice.decks.BREAKING_COLUMNS`); None without the file or any heat."""
+    path = Path(path)
+    return breaking_window(read_ave_time(path), dt, fraction) if path.exists() else None
 
-    Reads the per-step log ``breaking.dat`` of a deck with the energy budget
-    (:data:`bonded_lattice.decks.BREAKING_COLUMNS`, by :func:`bonded_lattice.io.read_ave_time`).
+
+def breaking_window(log: dict[str, np.ndarray], dt: float, fraction: float = 0.02) -> float | None:
+    """:func:`breaking_duration` of the columns of a ``breaking.dat`` already read.
+
     ``fraction = 0`` is the 2017 paper's definition: from the first step with breaking heat to
     the step the heat reaches its final value.
     """
     if not 0.0 <= fraction < 0.5:
         raise ValueError(f"fraction = {fraction} is out of range: need 0 <= fraction < 0.5")
-    path = Path(path)
-    if not path.exists():
-        return None
-    log = read_ave_time(path)
     step = log["TimeStep"]
     if len(step) == 0:
         return None
@@ -417,37 +419,33 @@ def breaking_duration(path: str | Path, dt: float, fraction: float = 0.02) -> fl
     return float((end - onset) * dt)
 
 
-def peak_kinetic_fraction(kinetic: np.ndarray, work: np.ndarray) -> float:
-    """The largest kinetic energy / |external work| once the work exceeds 1% of its final
-    value (before that the ratio of two small numbers carries the start-up transient)."""
+def peak_work_fraction(values: np.ndarray, work: np.ndarray) -> float:
+    """The largest |value| / |external work| once the work exceeds 1% of its final value
+    (before that the ratio of two small numbers carries the start-up transient)."""
     work = np.abs(np.asarray(work, dtype=float))
     rows = work > 0.01 * work[-1] if len(work) else np.zeros(0, dtype=bool)
-    return float((np.asarray(kinetic)[rows] / work[rows]).max()) if rows.any() else 0.0
+    return float((np.abs(np.asarray(values))[rows] / work[rows]).max()) if rows.any() else 0.0
 
 
 def energy_summary(thermo: dict, breaking_log: str | Path, dt: float) -> dict:
     """Final energy budget (J; per metre of thickness in 2D) and the balance quality.
 
-    max_balance_ratio: the largest |balance error| / external work over the output
-    rows once the work exceeds 1% of its final value (before that the ratio of two
-    small numbers says little: the first rows carry the start-up transient).
+    max_balance_ratio and peak_kinetic_fraction: the largest |balance error| and kinetic
+    energy over the external work at the thermo rows (:func:`peak_work_fraction`); from the
+    per-step log ``breaking_log`` (strength decks write it), the peak kinetic fraction at
+    every step and the time the bonds take to break, from 2% to 98% of the breaking heat and
+    from its start to its end.
     """
     final = {name: float(thermo[f"c_energy[{k + 1}]"][-1]) for k, name in enumerate(ENERGY_NAMES)}
-    work = np.abs(thermo["c_energy[8]"])
-    balance = np.abs(thermo["c_energy[10]"])
-    rows = work > 0.01 * work[-1]
-    final["max_balance_ratio"] = float((balance[rows] / work[rows]).max()) if rows.any() else 0.0
-    final["peak_kinetic_fraction"] = peak_kinetic_fraction(thermo["c_energy[2]"], work)
-    # at every step (strength decks log it): the peak kinetic fraction, and the time the
-    # bonds take to break, from 2% to 98% of the breaking heat and from its start to its end
-    final["peak_kinetic_fraction_every_step"] = None
-    final["breaking_duration_s"] = breaking_duration(breaking_log, dt)
-    final["breaking_duration_full_s"] = breaking_duration(breaking_log, dt, fraction=0.0)
-    if Path(breaking_log).exists():
-        log = read_ave_time(breaking_log)
-        if "c_energy[8]" in log and len(log["TimeStep"]):
-            final["peak_kinetic_fraction_every_step"] = peak_kinetic_fraction(
-                log["c_energy[2]"], log["c_energy[8]"])
+    work = thermo["c_energy[8]"]
+    final["max_balance_ratio"] = peak_work_fraction(thermo["c_energy[10]"], work)
+    final["peak_kinetic_fraction"] = peak_work_fraction(thermo["c_energy[2]"], work)
+    log = read_ave_time(breaking_log) if Path(breaking_log).exists() else None
+    per_step = log is not None and "c_energy[8]" in log and len(log["TimeStep"]) > 0
+    final["peak_kinetic_fraction_every_step"] = (
+        peak_work_fraction(log["c_energy[2]"], log["c_energy[8]"]) if per_step else None)
+    for key, fraction in (("breaking_duration_s", 0.02), ("breaking_duration_full_s", 0.0)):
+        final[key] = breaking_window(log, dt, fraction) if log is not None else None
     return final
 
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from bonded_lattice.decks import BREAKING_COLUMNS
-from bonded_lattice.experiment import breaking_duration, peak_kinetic_fraction
+from bonded_lattice.experiment import breaking_duration, peak_work_fraction
 from bonded_lattice.io import read_ave_time
 
 
@@ -66,10 +66,10 @@ def test_breaking_duration_from_two_to_ninety_eight_percent_of_the_heat(tmp_path
     assert breaking_duration(tmp_path / "missing.dat", dt=1e-8) is None
 
 
-def test_peak_kinetic_fraction_skips_the_first_percent_of_the_work():
+def test_peak_work_fraction_skips_the_first_percent_of_the_work():
     # work 0.001 J is below 1% of the final 40 J: that row's ratio (1000) is the start-up
     # transient and does not count; of the others (0.1, 0.25, 0.05) the largest is 0.25
     kinetic = np.array([1.0, 1.0, 5.0, 2.0])
     work = np.array([0.001, -10.0, 20.0, 40.0])    # the work's sign does not matter
-    assert peak_kinetic_fraction(kinetic, work) == 0.25
-    assert peak_kinetic_fraction(kinetic[:0], work[:0]) == 0.0
+    assert peak_work_fraction(kinetic, work) == 0.25
+    assert peak_work_fraction(kinetic[:0], work[:0]) == 0.0
