@@ -6,7 +6,7 @@
     bonded-lattice generate --dim 2 --n 60 --grains 40 --stiffness-sd 0.2 --strength 0.5 1.5
     bonded-lattice run --rock quartz --dim 2 --test compression --n 30 --np 2 --out run2d
     bonded-lattice calibrate --rock quartz --dim 2 --n 15 --out cal2d
-    bonded-lattice validate [--slow]      # rewrites docs/validation.md
+    bonded-lattice validate [--slow]      # docs/validation.json and .md
     bonded-lattice scene polycrystal --n 40 --steps 20 --run --np 1 --out poly
 """
 
@@ -145,8 +145,10 @@ def cmd_calibrate(args: argparse.Namespace) -> int:
 def cmd_validate(args: argparse.Namespace) -> int:
     from .validation import validate
 
+    sections = args.sections.split(",") if args.sections else None
     doc = validate(args.out, args.doc, np_=args.np, slow=args.slow, reuse=args.reuse,
-                   progress=not args.quiet)
+                   progress=not args.quiet, sections=sections, results=args.results,
+                   doc_only=args.doc_only)
     print(f"wrote {doc}")
     return 0
 
@@ -281,7 +283,14 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--slow", action="store_true",
                    help="also the largest sizes and the papers' schedule (about an hour)")
     p.add_argument("--reuse", action="store_true",
-                   help="keep runs whose summary.json exists (rewrite the doc only)")
+                   help="keep runs whose summary.json exists")
+    p.add_argument("--sections", default="",
+                   help="comma-separated sections to run (default: all); the others keep "
+                   "their data in the results file")
+    p.add_argument("--results", default=None,
+                   help="the results file (default: the doc's name with .json)")
+    p.add_argument("--doc-only", action="store_true",
+                   help="run nothing: rewrite the doc from the results file")
     p.set_defaults(func=cmd_validate)
 
     p = sub.add_parser("scene", help="a Mike/Elle scene: competent layer, polycrystal or "

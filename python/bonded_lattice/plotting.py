@@ -51,42 +51,66 @@ def stress_strain_png(path: str | Path, strain: np.ndarray, stress: np.ndarray, 
     save_png(fig, path)
 
 
-def broken_bond_map_png(path: str | Path, initial_dump: str | Path, final_dump: str | Path,
-                        dim: int, title: str = "") -> int:
-    """Particles coloured by their broken bonds; returns the number of broken bonds.
+def damaged_particles(initial_dump: str | Path, final_dump: str | Path, dim: int) -> dict:
+    """The particles that lost bonds between two dumps, for :func:`damage_map_png`.
 
-    With the decks' ``c_ntension`` and ``c_nshear`` columns, two panels: bonds
-    broken in tension (the micro-cracks across the load) and in shear (the
-    shear zones); otherwise one panel of all bonds lost since the initial dump.
-    In 3D the particles are projected on the x-z plane.
+    Returns ``{"bounds": [xlo, xhi, ylo, yhi], "x": [...], "y": [...], "panels": {label:
+    [bonds lost per damaged particle]}}`` (m; in 3D the x-z projection).  With the decks'
+    ``c_ntension`` and ``c_nshear`` columns two panels, bonds broken in tension (the
+    micro-cracks across the load) and in shear (the shear zones); otherwise one panel of
+    all bonds lost since the initial dump.
     """
-    plt = _pyplot()
     names, first = read_atom_dump(initial_dump)
     _, last = read_atom_dump(final_dump)
     x, y = last[:, names.index("x")], last[:, names.index("y" if dim == 2 else "z")]
     if "c_ntension" in names and "c_nshear" in names:
-        panels = [("broken in tension", last[:, names.index("c_ntension")]),
-                  ("broken in shear", last[:, names.index("c_nshear")])]
+        lost = {"broken in tension": last[:, names.index("c_ntension")],
+                "broken in shear": last[:, names.index("c_nshear")]}
     else:
         col = names.index("c_nbonds")
-        panels = [("broken", first[:, col] - last[:, col])]
+        lost = {"broken": first[:, col] - last[:, col]}
+    damaged = np.zeros(len(x), dtype=bool)
+    for values in lost.values():
+        damaged |= values > 0
+    return {"dim": dim, "bounds": [float(x.min()), float(x.max()), float(y.min()), float(y.max())],
+            "x": [float(f"{v:.7g}") for v in x[damaged]],
+            "y": [float(f"{v:.7g}") for v in y[damaged]],
+            "panels": {k: [int(round(v)) for v in values[damaged]] for k, values in lost.items()}}
+
+
+def damage_map_png(path: str | Path, damage: dict, title: str = "") -> int:
+    """The damaged particles of :func:`damaged_particles` coloured by their broken bonds,
+    over the block's outline; returns the number of broken bonds."""
+    plt = _pyplot()
+    panels = damage["panels"]
+    x, y = np.asarray(damage["x"]) * 1e3, np.asarray(damage["y"]) * 1e3
+    xlo, xhi, ylo, yhi = (1e3 * b for b in damage["bounds"])
     fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 5), squeeze=False)
     total = 0.0
-    for ax, (label, lost) in zip(axes[0], panels):
+    for ax, (label, values) in zip(axes[0], panels.items()):
+        lost = np.asarray(values, dtype=float)
         total += lost.sum()
-        intact = lost == 0
-        order = np.argsort(lost[~intact])   # most damaged drawn on top (3D projection)
-        ax.scatter(x[intact] * 1e3, y[intact] * 1e3, s=4, c="0.85", lw=0)
-        sc = ax.scatter(x[~intact][order] * 1e3, y[~intact][order] * 1e3, s=8,
-                        c=lost[~intact][order], cmap="inferno_r", vmin=0,
-                        vmax=max(1.0, float(lost.max())), lw=0)
+        ax.add_patch(plt.Rectangle((xlo, ylo), xhi - xlo, yhi - ylo, color="0.9", lw=0))
+        hit = lost > 0
+        order = np.argsort(lost[hit])   # most damaged drawn on top (3D projection)
+        sc = ax.scatter(x[hit][order], y[hit][order], s=8, c=lost[hit][order],
+                        cmap="inferno_r", vmin=0, vmax=max(1.0, float(lost.max(initial=0))),
+                        lw=0)
         fig.colorbar(sc, ax=ax, label=f"bonds {label} per particle")
+        ax.set_xlim(xlo - 0.5, xhi + 0.5)
+        ax.set_ylim(ylo - 0.5, yhi + 0.5)
         ax.set_aspect("equal")
         ax.set_xlabel("x (mm)")
-        ax.set_ylabel(("y" if dim == 2 else "z") + " (mm)")
+        ax.set_ylabel(("y" if damage["dim"] == 2 else "z") + " (mm)")
         ax.set_title(f"{title}\n{label}" if title else label, fontsize=9)
     save_png(fig, path)
     return int(round(total / 2))
+
+
+def broken_bond_map_png(path: str | Path, initial_dump: str | Path, final_dump: str | Path,
+                        dim: int, title: str = "") -> int:
+    """:func:`damage_map_png` of the bonds lost between two dumps; returns their number."""
+    return damage_map_png(path, damaged_particles(initial_dump, final_dump, dim), title)
 
 
 def convergence_png(path: str | Path, dim: int, series: list[dict],

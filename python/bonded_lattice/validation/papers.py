@@ -1,0 +1,69 @@
+"""Every number the validation compares with, as the papers state it, and where.
+
+Liu, Pollard & Shi (2013), J. Geophys. Res. 118 (2D, quartz) and Liu et al. (2017), Comput.
+Geotech. (3D, quartzite with the same properties).  Relative errors are measured minus
+formula over formula; docs/theory.md, "The papers' numerical results", derives the formulas
+the errors refer to.  Each entry: the value and the place in the paper that states it.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+__all__ = ["PAPER", "PaperValue", "paper_value"]
+
+
+class PaperValue(NamedTuple):
+    value: float
+    source: str
+
+
+PAPER: dict[str, PaperValue] = {
+    # 2013, 2D
+    "2d.unit.Tu": PaperValue(-0.0003, "Liu 2013, para. 50: one unit 0.03% below"),
+    "2d.unit.Cu": PaperValue(-0.0098, "Liu 2013, para. 50: one unit 0.98% below"),
+    "2d.multi.Tu": PaperValue(-0.043, "Liu 2013, para. 51: mean of the six multi-unit "
+                                      "lattices (18-16611 particles) 4.3% below"),
+    "2d.multi.Cu": PaperValue(-0.222, "Liu 2013, para. 51: mean of the six multi-unit "
+                                      "lattices 22.2% below"),
+    "2d.n30.Tu": PaperValue(-0.033, "Liu 2013, para. 54: the 1033-particle block 3.3% below"),
+    "2d.n4.E": PaperValue(-0.03, "Liu 2013, para. 45: 18 particles, E about 3% low "
+                                 "(small strain)"),
+    "2d.unit.E_1e-3": PaperValue(-0.00034, "Liu 2013, para. 47: one unit at strain -1e-3, "
+                                           "E 0.034% low"),
+    "2d.unit.nu_1e-3": PaperValue(0.00084, "Liu 2013, para. 47: one unit at strain -1e-3, "
+                                           "nu 0.084% high"),
+    "2d.unit.Cu_strain": PaperValue(3.17e-3, "Liu 2013, para. 50: failure strain of the "
+                                             "unit's Cu test"),
+    "2d.unit.Tu_strain": PaperValue(2.71e-4, "Liu 2013, para. 50: failure strain of the "
+                                             "unit's Tu test"),
+    # 2017, 3D
+    "3d.unit.Tu": PaperValue(-0.00011, "Liu 2017, section 5.2: one unit 0.011% below"),
+    "3d.unit.Cu": PaperValue(-0.0173, "Liu 2017, section 5.2: one unit 1.73% below"),
+    "3d.multi.Tu": PaperValue(-0.0889, "Liu 2017, section 5.2: mean of the multi-unit "
+                                       "models 8.89% below"),
+    "3d.multi.Cu": PaperValue(-0.1851, "Liu 2017, section 5.2: mean of the multi-unit "
+                                       "models 18.51% below"),
+    "3d.energy.tension.peak_kinetic": PaperValue(
+        0.162, "Liu 2017, section 5.3: maximum kinetic energy 16.2% of the total energy, "
+               "tension test of the 2166-element model"),
+    "3d.energy.tension.duration_s": PaperValue(
+        2.83e-6, "Liu 2017, section 5.3 (Fig. 6d): breaking heat rises from D1 to D2 "
+                 "in 2.83e-6 s"),
+    "3d.energy.tension.width_m": PaperValue(0.012, "Liu 2017, section 5.3: the model is "
+                                                   "1.2 cm in width"),
+    "3d.energy.tension.crack_speed": PaperValue(4240.0, "Liu 2017, section 5.3: the opening "
+                                                        "crack runs at about 4240 m/s"),
+    "3d.energy.tension.failure_time_s": PaperValue(
+        1.072e-2, "Liu 2017, section 5.3 (Fig. 6b): the model breaks in two at 1.072e-2 s"),
+    "3d.energy.compression.failure_duration_s": PaperValue(
+        1e-4, "Liu 2017, section 5.3 (Fig. 6a inset): the failure takes about 1e-4 s"),
+}
+
+
+def paper_value(key: str) -> float:
+    """The value of :data:`PAPER` ``key``; a KeyError naming the known keys otherwise."""
+    try:
+        return PAPER[key].value
+    except KeyError:
+        raise KeyError(f"no paper value {key!r}: known are {', '.join(sorted(PAPER))}") from None
