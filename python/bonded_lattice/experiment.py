@@ -96,6 +96,10 @@ PERIODIC_STEPS = 10000
 # the end of relaxation periods only
 THERMO_LINES = 1500
 THERMO_LINES_STEPWISE = 4000
+# the platens' spring stiffness as a multiple of Kn: 2 by default; stiffer platens (closer to
+# the papers' rigid planes) raise the contact frequency by sqrt(stiffness) at the same time
+# step, so 20 (omega dt = 0.48 at the stepwise schedule's 0.107 sqrt(m/Kn)) is the limit
+MAX_PLATEN_STIFFNESS = 20.0
 
 
 def confined_strength(rock: Rock, confining: float) -> float:
@@ -223,15 +227,16 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
               confining: float = 0.0, dump_every: int = 0, gauges: bool = True,
               energy: bool = False, shear_frame: str = "fixed",
               grains: GrainPairOptions | None = None,
-              atom_style: str = "atomic") -> DeckSpec:
+              atom_style: str = "atomic", wall_kn: float | None = None) -> DeckSpec:
     """The deck of a planned run (reads ``data.lattice`` beside it).
 
     grains: the pair style's grain keywords of a heterogeneous block, whose
     data file has a Grains section (:func:`bonded_lattice.grains.grain_arrays`).
     atom_style: that of the data file (:func:`bonded_lattice.lattice.write_data`).
+    wall_kn: the platens' spring stiffness (N/m; default 2 Kn).
     """
     return DeckSpec(gauges=gauges, energy=energy, shear_frame=shear_frame, grains=grains,
-                    atom_style=atom_style,
+                    atom_style=atom_style, wall_kn=wall_kn,
                     test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
                     area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps,
                     dt=plan.dt, thermo_every=plan.thermo_every, confining=confining,
@@ -261,8 +266,14 @@ class RockTest(Study):
                  d: float = 1.0e-3, progress: bool = True, bond: BondParameters | None = None,
                  dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
                  shear_frame: str = "fixed", atom_style: str = "atomic",
-                 pictures: bool = True, **plan_options) -> None:
+                 pictures: bool = True, platen_stiffness: float = 2.0,
+                 **plan_options) -> None:
         super().__init__(out, np_=np_, progress=progress, pictures=pictures)
+        if not (math.isfinite(platen_stiffness) and 0 < platen_stiffness <= MAX_PLATEN_STIFFNESS):
+            raise ValueError(f"platen_stiffness = {platen_stiffness} is out of range: need 0 < "
+                             f"platen_stiffness <= {MAX_PLATEN_STIFFNESS:g} (a multiple of Kn; "
+                             "stiffer platens need a smaller time step)")
+        self.platen_stiffness = platen_stiffness
         self.rock, self.dim, self.test, self.n, self.d = rock, dim, test, n, d
         self.bond = bond
         self.dump_every = dump_every
@@ -293,7 +304,8 @@ class RockTest(Study):
         deck = self.out / f"in.{self.test}"
         self.spec = deck_spec(plan, self.test, self.dim, self.bond, self.confining,
                               self.dump_every, has_mid_height(self.lattice), self.energy,
-                              self.shear_frame, atom_style=self.atom_style)
+                              self.shear_frame, atom_style=self.atom_style,
+                              wall_kn=self.platen_stiffness * self.bond.Kn)
         write_deck(self.spec, deck)
         return deck
 
@@ -349,6 +361,7 @@ class RockTest(Study):
             "n": self.n,
             "confining_Pa": self.confining,
             "orientation_deg": self.orientation,
+            "platen_stiffness": self.platen_stiffness,
             "ranks": self.np_,
             "plan": asdict(plan),
             "bond": asdict(self.bond),
@@ -369,7 +382,8 @@ class RockTest(Study):
 def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int = 2,
              d: float = 1.0e-3, progress: bool = True, bond: BondParameters | None = None,
              dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
-             shear_frame: str = "fixed", atom_style: str = "atomic", **plan_options) -> dict:
+             shear_frame: str = "fixed", atom_style: str = "atomic",
+             platen_stiffness: float = 2.0, **plan_options) -> dict:
     """Run one test end to end (:class:`RockTest`) and return the summary (also written to
     summary.json).
 
@@ -380,12 +394,14 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
 
     bond: bond parameters to use instead of the rock's converted ones (calibration);
         the targets stay the rock's properties.
+    platen_stiffness: the platens' springs as a multiple of Kn (0 < value <= 20).
     plan_options: passed to :func:`plan_test` (crossings, speed, confining,
         schedule, damping, elastic_strain, step_size, relax_steps).
     """
     return RockTest(rock, dim, test, n, out, np_=np_, d=d, progress=progress, bond=bond,
                     dump_every=dump_every, orientation=orientation, energy=energy,
-                    shear_frame=shear_frame, atom_style=atom_style, **plan_options).run()
+                    shear_frame=shear_frame, atom_style=atom_style,
+                    platen_stiffness=platen_stiffness, **plan_options).run()
 
 
 ENERGY_NAMES = ("elastic", "kinetic", "gravitational", "viscous_heat", "breaking_heat_normal",

@@ -9,6 +9,12 @@ import numpy as np
 from .io.dump import read_atom_dump
 
 
+def pyplot():
+    """matplotlib.pyplot with the Agg backend (files only), for modules drawing their own
+    figures."""
+    return _pyplot()
+
+
 def _pyplot():
     import matplotlib
 
