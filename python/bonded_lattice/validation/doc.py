@@ -43,6 +43,8 @@ def paper_pct(key: str, digits: int = 2) -> str:
 
 def write_doc(results: dict, doc: Path, sections: list) -> None:
     """docs/validation.md (and its figures) from ``results``, section by section."""
+    from .overview import overview_lines   # it reads the sections' data
+
     ctx = DocContext(doc)
     entries = results["sections"]
     lines = ["# Validation: the numerical tests of Liu et al. (2013, 2017)", "",
@@ -56,6 +58,7 @@ def write_doc(results: dict, doc: Path, sections: list) -> None:
              "rho 2650 kg/m3), particles of 1 mm.  Errors are measured minus formula, "
              "relative.  The papers' values and where they state them are in "
              "`bonded_lattice/validation/papers.py`.", ""]
+    lines += overview_lines(results)
     for section in sections:
         entry = entries.get(section.name)
         if entry is None:

@@ -6,14 +6,15 @@ from .blocks import SERIES, STRAIN, UNITS
 from .energy import ENERGY
 from .friction import CALIBRATION, ENVELOPE
 from .ladder import LADDER
+from .loading import LOADING_3D
 from .maps import FAILURE_MAP
 from .schedule import SCHEDULE
 from .section import Section
 
 __all__ = ["SECTIONS", "section_names"]
 
-SECTIONS: list[Section] = [UNITS, SERIES, LADDER, FAILURE_MAP, STRAIN, SCHEDULE, ENERGY,
-                           ENVELOPE, CALIBRATION]
+SECTIONS: list[Section] = [UNITS, SERIES, LADDER, LOADING_3D, FAILURE_MAP, STRAIN, SCHEDULE,
+                           ENERGY, ENVELOPE, CALIBRATION]
 
 
 def section_names() -> list[str]:

@@ -1,0 +1,90 @@
+"""How slow constant loading must be in 3D compression: Cu against the number of elastic-wave
+crossings to failure, at the papers' damping and at a quarter of it, next to the papers'
+stepwise schedule (issue 19: the 3D constant schedule was tuned in 2D only).
+
+The platen force of a block loaded at constant speed carries the viscous drag of the moving
+particles (eta times their speeds), which vanishes only as the loading slows; the stepwise
+schedule reads the force after each relaxation, with the particles at rest.
+"""
+
+from __future__ import annotations
+
+from ..plotting import pyplot, save_png
+from .doc import DocContext, pct
+from .runner import Validation, rock_for
+from .section import Section
+
+__all__ = ["LOADING_3D"]
+
+SIZES = [4, 6, 10]
+CROSSINGS = [100.0, 300.0, 1000.0, 3000.0]
+DAMPINGS = [1.0, 0.25]
+
+
+def _folder(n: int, crossings: float, damping: float) -> str:
+    return f"3d/rate_n{n}_compression_c{crossings:g}_d{damping:g}"
+
+
+def run_loading(v: Validation) -> dict:
+    rock, rows = rock_for(3), []
+    for n in SIZES:
+        row = {"n": n, "stepwise": v.run(f"3d/paper_n{n}_compression", rock, 3, "compression",
+                                         n, schedule="stepwise"), "constant": []}
+        for damping in DAMPINGS:
+            for c in CROSSINGS:
+                run = v.run(_folder(n, c, damping), rock, 3, "compression", n, crossings=c,
+                            damping=damping)
+                row["constant"].append({"crossings": c, "damping": damping, "run": run})
+        rows.append(row)
+    return {"rows": rows}
+
+
+def doc_loading(data: dict, ctx: DocContext) -> list[str]:
+    rows = data["rows"]
+    head = "| n_y | elements | stepwise (papers') | " + " | ".join(
+        f"{c:g} crossings, eta x {d:g}" for d in DAMPINGS for c in CROSSINGS) + " |"
+    L = ["## 3D compression: how slow constant loading must be", "",
+         "Cu errors of 3D blocks under constant loading at 100 to 3000 elastic-wave crossings to "
+         "failure, at the papers' damping and at a quarter of it, next to the papers' stepwise "
+         "schedule (papers' damping).", "", head, "|" + "---|" * (head.count("|") - 1)]
+    for row in rows:
+        cells = [str(row["n"]), str(row["stepwise"]["particles"]),
+                 pct(row["stepwise"]["relative_error"]["Cu"])]
+        by = {(r["damping"], r["crossings"]): r["run"] for r in row["constant"]}
+        cells += [pct(by[d, c]["relative_error"]["Cu"]) for d in DAMPINGS for c in CROSSINGS]
+        L.append("| " + " | ".join(cells) + " |")
+    gaps = [(row["n"], {d: by_gap(row, d) for d in DAMPINGS}) for row in rows]
+    L += ["", "Constant loading minus stepwise at the slowest loading (percentage points): " +
+          "; ".join(f"n_y = {n}: " + ", ".join(f"eta x {d:g} {100 * g:+.2f}" for d, g in gs.items())
+                    for n, gs in gaps) + "."]
+    _png(ctx, rows)
+    L += ["", "![Cu against loading speed, 3D](img/loading_rate_3d.png)"]
+    return L
+
+
+def by_gap(row: dict, damping: float) -> float:
+    """Cu error at the slowest constant loading of ``damping`` minus the stepwise one."""
+    slowest = max((r for r in row["constant"] if r["damping"] == damping),
+                  key=lambda r: r["crossings"])
+    return (slowest["run"]["relative_error"]["Cu"]
+            - row["stepwise"]["relative_error"]["Cu"])
+
+
+def _png(ctx: DocContext, rows: list[dict]) -> None:
+    plt = pyplot()
+    fig, axes = plt.subplots(1, len(rows), figsize=(3.6 * len(rows), 3.4), squeeze=False)
+    for ax, row in zip(axes[0], rows):
+        for damping, style in zip(DAMPINGS, ("o-", "s--")):
+            pts = sorted((r["crossings"], 100 * r["run"]["relative_error"]["Cu"])
+                         for r in row["constant"] if r["damping"] == damping)
+            ax.semilogx(*zip(*pts), style, label=f"constant, eta x {damping:g}")
+        ax.axhline(100 * row["stepwise"]["relative_error"]["Cu"], color="r", ls=":",
+                   label="stepwise (papers')")
+        ax.set_title(f"n_y = {row['n']} ({row['stepwise']['particles']} elements)", fontsize=9)
+        ax.set_xlabel("wave crossings to failure")
+        ax.set_ylabel("Cu error (%)")
+        ax.legend(fontsize=7)
+    save_png(fig, ctx.img / "loading_rate_3d.png", dpi=110)
+
+
+LOADING_3D = Section("loading_3d", run_loading, doc_loading, slow=True)
