@@ -54,9 +54,8 @@ def write_doc(results: dict, doc: Path, sections: list) -> None:
              "Each section names the commit, date and machine its runs were made with.  The "
              "single-contact tests of Li et al. (2018) are in "
              "[single_contact.md](single_contact.md).", "",
-             "Rock: the papers' quartz (E 90 GPa, nu 0.16, Tu 25 MPa, Cu 252 MPa, mu_i 1, "
-             "rho 2650 kg/m3), particles of 1 mm.  Errors are measured minus formula, "
-             "relative.  The papers' values and where they state them are in "
+             f"Rock: the papers' {_rock_text()}, particles of 1 mm.  Errors are measured "
+             "minus formula, relative.  The papers' values and where they state them are in "
              "`bonded_lattice/validation/papers.py`.", ""]
     lines += overview_lines(results)
     for section in sections:
@@ -68,6 +67,14 @@ def write_doc(results: dict, doc: Path, sections: list) -> None:
             continue
         lines += body[:1] + ["", _provenance(entry)] + body[1:] + [""]
     doc.write_text("\n".join(lines).rstrip("\n") + "\n")
+
+
+def _rock_text() -> str:
+    from .runner import rock_for
+
+    r = rock_for(2)
+    return (f"{r.name} (E {r.E / 1e9:g} GPa, nu {r.nu:g}, Tu {r.Tu / 1e6:g} MPa, Cu "
+            f"{r.Cu / 1e6:g} MPa, mu_i {r.mu_i:g}, rho {r.rho:g} kg/m3)")
 
 
 def _provenance(entry: dict) -> str:
