@@ -168,7 +168,8 @@ def test_options(p: argparse.ArgumentParser, test: bool = True, choose_test: boo
                    help="axial strain reached by --test elastic (default %(default)g)")
     p.add_argument("--orientation", type=float, default=lib["orientation"],
                    help="2D: degrees from the x axis to the close-packed rows (default "
-                   "%(default)g, the papers' set-up; 30 puts one bond family along the load)")
+                   "%(default)g, the papers' set-up; 30 puts one bond family along the load); "
+                   "3D: 0 (the paper's, layers across the load) or 90 (rows along the load)")
     p.add_argument("--energy", action="store_true",
                    help="energy budget (compute lattice/energy) in the output, energy.png")
     p.add_argument("--shear-frame", choices=SHEAR_FRAMES, default=lib["shear_frame"],

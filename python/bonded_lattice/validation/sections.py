@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from .anisotropy import ANISOTROPY
 from .blocks import SERIES, STRAIN, UNITS
 from .energy import ENERGY
 from .friction import CALIBRATION, ENVELOPE
@@ -12,7 +13,7 @@ from .section import Section
 __all__ = ["SECTIONS", "section_names"]
 
 SECTIONS: list[Section] = [UNITS, SERIES, FAILURE_MAP, STRAIN, SCHEDULE, ENERGY, ENVELOPE,
-                           CALIBRATION]
+                           CALIBRATION, ANISOTROPY]
 
 
 def section_names() -> list[str]:
