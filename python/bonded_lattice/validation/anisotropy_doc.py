@@ -24,6 +24,11 @@ def _below(x: float) -> str:
     return f"{100 * abs(x):.1f} points {'below' if x < 0 else 'above'}"
 
 
+def _mpa(r: dict, test: str) -> str:
+    """The stress at which a row's ``test`` run broke its first bond, in MPa."""
+    return f"{r['runs'][test]['first_break_stress'] / 1e6:.0f} MPa"
+
+
 def _deg(x: float) -> str:
     return f"{x:g}°"
 
@@ -227,10 +232,15 @@ def anisotropy_doc(data: dict, ctx: DocContext) -> list[str]:
           "platens: the platens, not the lattice, make most of that block's Cu deficit (also "
           f"at N = {sizes[-1]}: {pct(at_large[0.0]['relative_error']['Cu'], 1)} and "
           f"{pct(large['papers_platens']['relative_error']['Cu'], 1)}); "
-          f"{pct(along['relative_error']['Cu'], 0)} at 30°, where no bond is stretched by "
-          "the compression (a bond at 60° to the load lengthens by (sin² 30° − nu cos² 30°) "
-          "of the axial shortening, negative for nu < 1/3) and the block can only fail in "
-          f"shear; at the stepped angles {pct(lo_c, 0)} to {pct(hi_c, 0)}, rising with θ.",
+          f"{pct(along['relative_error']['Cu'], 0)} at 30°, where a uniform compression "
+          "stretches no bond (a bond at 60° to the load changes length by (nu cos² 30° − "
+          "sin² 30°) times the axial shortening, negative for nu < 1/3), so the first bond "
+          f"breaks only at {_mpa(along, 'compression')} against {_mpa(zero, 'compression')} "
+          "at 0°, where the bonds across the load open (C_open); at the stepped angles "
+          f"{pct(lo_c, 0)} to {pct(hi_c, 0)}, from {pct(stepped[0]['relative_error']['Cu'], 0)}"
+          f" at {_deg(stepped[0]['orientation_deg'])} to "
+          f"{pct(stepped[-1]['relative_error']['Cu'], 0)} at "
+          f"{_deg(stepped[-1]['orientation_deg'])}.",
           f"- **The paper's statement.**  Against θ = 0, E is lower at {lower_e} of the "
           f"{others} other angles and Tu at {lower_t} of {others} (N = {sizes[0]}).  For Tu "
           "this agrees with the paper and with the unbounded lattice (lower at "
