@@ -209,6 +209,13 @@ def _header(spec: DeckSpec) -> str:
         "confined": f"Confined compression: platens plus side walls holding {spec.confining:g} Pa",
         "periodic": "Uniaxial tension of a periodic cell: no platens, no free surfaces",
     }[spec.test]
+    if spec.ends == "layers" and spec.test != "tension":
+        held = "smooth planes holding the end layers (stepped ends)"
+        title = {"compression": f"Uniaxial compression between two {held}",
+                 "elastic": f"Elastic test: small compression between two {held}, unbreakable "
+                            "bonds (Xb, Fs0 x 100)",
+                 "confined": f"Confined compression: two {held}, side walls holding "
+                             f"{spec.confining:g} Pa"}[spec.test]
     b = deck_bond(spec)
     periodic = spec.test == "periodic"
     boundary = "p p p" if periodic else ("f f p" if spec.dim == 2 else "f f f")

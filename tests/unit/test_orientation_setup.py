@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+from bonded_lattice.cli import main
 from bonded_lattice.conversion import rock_to_bond
 from bonded_lattice.decks import deck_text
 from bonded_lattice.experiment import (build_lattice, choose_ends, deck_spec, end_band_particles,
@@ -138,3 +139,16 @@ def test_unbounded_3d_lattice_meets_the_formulas_across_its_layers():
     bulk = bulk_3d_elastic(ROCK.E, ROCK.nu, ROCK.Tu, ROCK.Cu, ROCK.mu_i)
     assert bulk["E_across_layers"] == pytest.approx(0.0, abs=1e-9)
     assert bulk["nu_across_layers"] == pytest.approx(0.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("args,held", [(["--dim", "2", "--orientation", "20"], True),
+                                       (["--dim", "2", "--orientation", "20", "--ends",
+                                         "platens"], False),
+                                       (["--dim", "2"], False),
+                                       (["--dim", "3", "--orientation", "90"], True)])
+def test_generate_writes_the_chosen_ends(tmp_path, args, held):
+    assert main(["generate", "--n", "4", "--test", "compression", "--out", str(tmp_path),
+                 *args]) == 0
+    deck = (tmp_path / "in.compression").read_text()
+    assert ("fix             ptop top move" in deck) == held
+    assert ("lattice/wall" in deck) == (not held)
