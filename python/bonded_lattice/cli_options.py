@@ -26,7 +26,7 @@ from dataclasses import MISSING, dataclass, field, fields
 from typing import Any, Callable
 
 from .decks import SHEAR_FRAMES, TESTS
-from .experiment import plan_test, run_test
+from .experiment import END_CHOICES, plan_test, run_test
 from .grains import GrainModel, GrainPairOptions
 from .lattice import ATOM_STYLES
 from .scenes import DEFORMATIONS, KINDS, MODES, Scene
@@ -142,6 +142,11 @@ def test_options(p: argparse.ArgumentParser, test: bool = True, choose_test: boo
                        "faces at zero stress): E, nu and Tu with no platens and no boundary layer")
         p.add_argument("--confining", type=float, default=lib["confining"],
                        help="confining stress of --test confined, Pa (compression positive)")
+        p.add_argument("--ends", choices=END_CHOICES, default=lib["ends"],
+                       help="how compression, elastic and confined tests load the block's ends: "
+                       "platens (the papers'), layers (the end layers held and pushed, for "
+                       "stepped ends) or auto (default: platens for flat ends, layers for the "
+                       "stepped ends of a turned lattice)")
     if not test:
         return
     add(p, "n", TEST_DEFAULTS["n"], help="particles across (2D) or elements along y (3D); "
@@ -168,7 +173,8 @@ def test_options(p: argparse.ArgumentParser, test: bool = True, choose_test: boo
                    help="axial strain reached by --test elastic (default %(default)g)")
     p.add_argument("--orientation", type=float, default=lib["orientation"],
                    help="2D: degrees from the x axis to the close-packed rows (default "
-                   "%(default)g, the papers' set-up; 30 puts one bond family along the load)")
+                   "%(default)g, the papers' set-up; 30 puts one bond family along the load); "
+                   "3D: 0 (the paper's, layers across the load) or 90 (rows along the load)")
     p.add_argument("--energy", action="store_true",
                    help="energy budget (compute lattice/energy) in the output, energy.png")
     p.add_argument("--shear-frame", choices=SHEAR_FRAMES, default=lib["shear_frame"],

@@ -7,7 +7,10 @@ and loads the block along its loading axis (y in 2D, z in 3D):
   planes (free to slide sideways) that move apart at ``speed`` — the papers'
   "bonded smooth planes";
 - ``compression``: two smooth platens (``fix lattice/wall``, ``mu 0``) move
-  toward each other at ``speed``;
+  toward each other at ``speed``; with ``ends="layers"`` (stepped ends, e.g. a
+  rotated 2D lattice, where platens would touch a few particles only) the end
+  layers are held and pushed together as tension pulls them apart (also for
+  ``elastic`` and ``confined``);
 - ``elastic``: compression to a small strain with breaking switched off
   (``Xb`` and ``Fs0`` multiplied by 100, as in Liu et al. 2017), for E and nu;
 - ``confined``: compression between the platens while smooth side walls
@@ -59,6 +62,8 @@ from .lattice import check_atom_style
 from .schedules import SCHEDULES  # the loading schedules' one vocabulary
 
 TESTS = ("tension", "compression", "elastic", "confined", "periodic")
+# how the ends are loaded (DeckSpec.ends)
+ENDS = ("platens", "layers")
 # the per-step log of a deck with the energy budget (fix ave/time, read by
 # io.read_ave_time): the breaking heat of the normal and of the shear springs
 # (compute lattice/energy), the bonds broken in tension and in shear, the kinetic
@@ -102,6 +107,11 @@ class DeckSpec:
     atom_style: str = "sphere"
     strain_rate: float = 0.0  # periodic: axial strain rate of fix deform (1/s)
     modulus: float = 0.0      # periodic: the barostat's estimate of the lattice's stiffness (Pa)
+    # how compression, elastic and confined tests load the ends (tension always holds the end
+    # layers): "platens" (the papers' smooth platens, fix lattice/wall) or "layers" (the end
+    # layers' axial motion prescribed, as in tension: for stepped ends that platens would
+    # touch at a few particles only, e.g. a rotated 2D lattice)
+    ends: str = "platens"
 
     def __post_init__(self) -> None:
         if self.test not in TESTS:
@@ -114,6 +124,11 @@ class DeckSpec:
             raise ValueError(f"shear_frame = {self.shear_frame!r} is not known: use one of "
                              f"{', '.join(SHEAR_FRAMES)}")
         check_atom_style(self.atom_style)
+        if self.ends not in ENDS:
+            raise ValueError(f"ends = {self.ends!r} is not known: use one of {', '.join(ENDS)}")
+        if self.ends == "layers" and self.test == "periodic":
+            raise ValueError("ends = 'layers': the periodic test has no ends (use 'platens', "
+                             "which it ignores)")
         if self.schedule not in SCHEDULES:
             raise ValueError(f"schedule = {self.schedule!r} is not known: use one of "
                              f"{', '.join(SCHEDULES)}")
@@ -194,6 +209,13 @@ def _header(spec: DeckSpec) -> str:
         "confined": f"Confined compression: platens plus side walls holding {spec.confining:g} Pa",
         "periodic": "Uniaxial tension of a periodic cell: no platens, no free surfaces",
     }[spec.test]
+    if spec.ends == "layers" and spec.test != "tension":
+        held = "smooth planes holding the end layers (stepped ends)"
+        title = {"compression": f"Uniaxial compression between two {held}",
+                 "elastic": f"Elastic test: small compression between two {held}, unbreakable "
+                            "bonds (Xb, Fs0 x 100)",
+                 "confined": f"Confined compression: two {held}, side walls holding "
+                             f"{spec.confining:g} Pa"}[spec.test]
     b = deck_bond(spec)
     periodic = spec.test == "periodic"
     boundary = "p p p" if periodic else ("f f p" if spec.dim == 2 else "f f f")
@@ -283,6 +305,47 @@ def _vector(axis: str, value: str, other: str = "0") -> str:
     return " ".join(value if a == axis else other for a in "xyz")
 
 
+def _end_layers(spec: DeckSpec) -> str:
+    """Loading through the end layers: the particles whose centres lie within 0.6 d of either
+    end (the outermost row or layer, or the staggered particles of a rotated lattice's
+    stepped end) are held by smooth planes: their axial motion is prescribed (apart in
+    tension, together otherwise), sideways they move freely with the block."""
+    ax, d = spec.axis, spec.d
+    sign = 1.0 if spec.test == "tension" else -1.0
+    way = "apart" if sign > 0 else "together"
+    if spec.schedule == "constant":
+        title = f"end layers moving {way} at {spec.speed:g} m/s"
+        move_top = f"linear {_vector(ax, f'{sign * spec.speed:.6g}', 'NULL')}"
+        move_bot = f"linear {_vector(ax, f'{-sign * spec.speed:.6g}', 'NULL')}"
+        variables = ""
+    else:
+        title = (f"end layers jumping {way} by {spec.step_size:g} m every "
+                 f"{spec.relax_steps} steps")
+        variables = (f"variable        dtop equal {sign * spec.step_size:.6g}*ceil((step-v_s0)/{spec.relax_steps})\n"
+                     f"variable        dbot equal -v_dtop\n")
+        move_top = f"variable {_vector(ax, 'v_dtop', 'NULL')} NULL NULL NULL"
+        move_bot = f"variable {_vector(ax, 'v_dbot', 'NULL')} NULL NULL NULL"
+    return f"""
+# ---- loading: {title} ----
+# the end layers (centres within 0.6 d of the ends: the outermost row, or both
+# staggered rows of a rotated lattice) are held by smooth planes: only their axial motion is
+# prescribed (fix move); sideways they move freely with the block
+region          toplayer block {_slab(ax, f"$(v_hi0-{0.6 * d!r})", "INF")} units box
+region          botlayer block {_slab(ax, "INF", f"$(v_lo0+{0.6 * d!r})")} units box
+group           top region toplayer
+group           bottom region botlayer
+group           inner subtract all top bottom
+velocity        all set 0 0 0 units box
+variable        s0 equal $(step)
+{variables}fix             ptop top move {move_top}
+fix             pbot bottom move {move_bot}
+{integrator("inner", spec.eta)}# stress (tension positive) from the force the block exerts on the end layers
+compute         ftop top reduce sum f{ax}
+compute         fbot bottom reduce sum f{ax}
+variable        stress equal 0.5*(c_fbot-c_ftop)/{spec.area:.8g}
+"""
+
+
 def _loading(spec: DeckSpec) -> str:
     ax, d = spec.axis, spec.d
     k = "xyz".index(ax) + 1  # index of the axis in fix outputs
@@ -302,37 +365,7 @@ compute         pvir all pressure NULL virial
 variable        stress equal -c_pvir[{k}]
 """
     if spec.test == "tension":
-        if spec.schedule == "constant":
-            title = f"end layers moving apart at {spec.speed:g} m/s"
-            move_top = f"linear {_vector(ax, f'{spec.speed:.6g}', 'NULL')}"
-            move_bot = f"linear {_vector(ax, f'{-spec.speed:.6g}', 'NULL')}"
-            variables = ""
-        else:
-            title = (f"end layers jumping apart by {spec.step_size:g} m every "
-                     f"{spec.relax_steps} steps")
-            variables = (f"variable        dtop equal {spec.step_size:.6g}*ceil((step-v_s0)/{spec.relax_steps})\n"
-                         f"variable        dbot equal -v_dtop\n")
-            move_top = f"variable {_vector(ax, 'v_dtop', 'NULL')} NULL NULL NULL"
-            move_bot = f"variable {_vector(ax, 'v_dbot', 'NULL')} NULL NULL NULL"
-        return f"""
-# ---- loading: {title} ----
-# the end layers (centres within 0.6 d of the ends: the outermost row, or both
-# staggered rows of a rotated lattice) are held by smooth planes: only their axial motion is
-# prescribed (fix move); sideways they move freely with the block
-region          toplayer block {_slab(ax, f"$(v_hi0-{0.6 * d!r})", "INF")} units box
-region          botlayer block {_slab(ax, "INF", f"$(v_lo0+{0.6 * d!r})")} units box
-group           top region toplayer
-group           bottom region botlayer
-group           inner subtract all top bottom
-velocity        all set 0 0 0 units box
-variable        s0 equal $(step)
-{variables}fix             ptop top move {move_top}
-fix             pbot bottom move {move_bot}
-{integrator("inner", spec.eta)}# stress (tension positive) from the force the block exerts on the end layers
-compute         ftop top reduce sum f{ax}
-compute         fbot bottom reduce sum f{ax}
-variable        stress equal 0.5*(c_fbot-c_ftop)/{spec.area:.8g}
-"""
+        return _end_layers(spec)
     wall_kn = spec.wall_kn if spec.wall_kn is not None else 2.0 * spec.bond.Kn
     r = 0.5 * d
     sides = ""
@@ -351,6 +384,8 @@ variable        stress equal 0.5*(c_fbot-c_ftop)/{spec.area:.8g}
                                   wall_kn, servo)
                       + smooth_wall(f"side{a}hi", f"{a}hi", f"$(bound(all,{a}max)+{r!r})",
                                     wall_kn, servo))
+    if spec.ends == "layers":
+        return sides + _end_layers(spec)
     if spec.schedule == "constant":
         title = f"moving in at {spec.speed:g} m/s"
         variables = ""
@@ -398,7 +433,8 @@ fix             stop all halt {spec.thermo_every} v_failed > 0.5 error continue
     if spec.energy:
         # after the fixes that add forces, as compute lattice/energy requires; the
         # end layers' prescribed motion does external work in tension
-        energy, columns = energy_budget("top bottom" if spec.test == "tension" else "")
+        layers = spec.test == "tension" or spec.ends == "layers"
+        energy, columns = energy_budget("top bottom" if layers else "")
     table = thermo(f"step time v_strain v_lateral v_gauge v_stress {BOND_COUNTS} ke{columns}",
                    spec.thermo_every, flush=True)
     full = "modify sort id format float %.17g"

@@ -24,10 +24,11 @@ from .conversion import (
     paper_damping_3d,
     rock_to_bond,
 )
-from .decks import BREAKING_COLUMNS, BREAKING_LOG, DeckSpec, write_deck
+from .decks import BREAKING_COLUMNS, BREAKING_LOG, ENDS, DeckSpec, write_deck
 from .grains import GrainPairOptions
 from .io.ave_time import read_ave_time
-from .lattice import Lattice, close_packed_block_3d, hex_block_2d, write_data
+from .lattice import (Lattice, close_packed_block_3d, hex_block_2d, turned_block_3d,
+                      write_data)
 from .periodic import paper_cell, periodic_cell
 from .plotting import broken_bond_map_png, energy_png, stress_strain_png
 from .rocks import Rock
@@ -60,16 +61,15 @@ class RunPlan:
 def build_lattice(dim: int, n: int, d: float, orientation: float = 0.0) -> Lattice:
     """The papers' blocks: n particles across (2D) or n elements along y (3D).
 
-    orientation (2D only): angle in degrees from the x axis to the close-packed rows
-    (0: the papers' set-up, rows perpendicular to the load; 30: one bond family
-    along the load); see :func:`bonded_lattice.lattice.block_2d`.
+    orientation: 2D: angle in degrees from the x axis to the close-packed rows (0: the
+    papers' set-up, rows perpendicular to the load; 30: one bond family along the load),
+    see :func:`bonded_lattice.lattice.block_2d`; 3D: 0 (the paper's set-up, close-packed
+    layers across the load) or 90 (the block turned about x: close-packed rows along the
+    load), see :func:`bonded_lattice.lattice.turned_block_3d`.
     """
     if dim == 2:
         return hex_block_2d(n, d, orientation=orientation)
-    if orientation != 0.0:
-        raise ValueError(f"orientation = {orientation} is out of range in 3D: the 3D blocks "
-                         "have their close-packed layers across the load (orientation 0)")
-    return close_packed_block_3d(n, d)
+    return turned_block_3d(close_packed_block_3d(n, d), orientation)
 
 
 def test_lattice(dim: int, n: int, d: float, test: str, orientation: float = 0.0) -> Lattice:
@@ -216,6 +216,48 @@ def end_particles(lattice: Lattice) -> int:
     return int(np.count_nonzero(h <= h.min() + 0.1 * lattice.d))
 
 
+def end_band_particles(lattice: Lattice) -> int:
+    """Particles whose centres lie within 0.6 d of either end: those the end layers of a
+    deck hold (:func:`bonded_lattice.decks.DeckSpec` ``ends``)."""
+    h = lattice.positions[:, lattice.axis]
+    return int(np.count_nonzero((h <= h.min() + 0.6 * lattice.d)
+                                | (h >= h.max() - 0.6 * lattice.d)))
+
+
+def end_contacts(lattice: Lattice) -> int:
+    """Particles a flat platen touches at either end (centres within 0.1 d of the end)."""
+    h = lattice.positions[:, lattice.axis]
+    return int(np.count_nonzero((h <= h.min() + 0.1 * lattice.d)
+                                | (h >= h.max() - 0.1 * lattice.d)))
+
+
+END_CHOICES = ("auto",) + ENDS
+
+
+def check_ends(ends: str) -> str:
+    """``ends`` if one of :data:`END_CHOICES`; else a ValueError naming it."""
+    if ends not in END_CHOICES:
+        raise ValueError(f"ends = {ends!r} is not known: use one of {', '.join(END_CHOICES)}")
+    return ends
+
+
+def choose_ends(lattice: Lattice, test: str, ends: str = "auto") -> str:
+    """How a test loads its block's ends (:data:`bonded_lattice.decks.ENDS`).
+
+    ``auto``: the papers' smooth platens when the ends are flat (every particle of the end
+    bands touches a platen: the papers' blocks), else ``layers``: the end bands held and
+    moved, because platens on a stepped end (a rotated 2D lattice, a 3D block with its
+    rows along the load) would touch only the few lowest particles and load the block
+    through them.  Tension always holds the end layers; the periodic test has no ends.
+    """
+    check_ends(ends)
+    if test in ("tension", "periodic"):
+        return "platens"
+    if ends != "auto":
+        return ends
+    return "platens" if end_contacts(lattice) == end_band_particles(lattice) else "layers"
+
+
 def has_mid_height(lattice: Lattice) -> bool:
     """Whether particles lie in the middle half of the height (for the lateral gauges)."""
     h = lattice.positions[:, lattice.axis]
@@ -227,16 +269,18 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
               confining: float = 0.0, dump_every: int = 0, gauges: bool = True,
               energy: bool = False, shear_frame: str = "fixed",
               grains: GrainPairOptions | None = None,
-              atom_style: str = "atomic", wall_kn: float | None = None) -> DeckSpec:
+              atom_style: str = "atomic", ends: str = "platens",
+              wall_kn: float | None = None) -> DeckSpec:
     """The deck of a planned run (reads ``data.lattice`` beside it).
 
     grains: the pair style's grain keywords of a heterogeneous block, whose
     data file has a Grains section (:func:`bonded_lattice.grains.grain_arrays`).
     atom_style: that of the data file (:func:`bonded_lattice.lattice.write_data`).
+    ends: ``platens`` or ``layers`` (:func:`choose_ends`).
     wall_kn: the platens' spring stiffness (N/m; default 2 Kn).
     """
     return DeckSpec(gauges=gauges, energy=energy, shear_frame=shear_frame, grains=grains,
-                    atom_style=atom_style, wall_kn=wall_kn,
+                    atom_style=atom_style, ends=ends, wall_kn=wall_kn,
                     test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
                     area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps,
                     dt=plan.dt, thermo_every=plan.thermo_every, confining=confining,
@@ -266,7 +310,7 @@ class RockTest(Study):
                  d: float = 1.0e-3, progress: bool = True, bond: BondParameters | None = None,
                  dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
                  shear_frame: str = "fixed", atom_style: str = "atomic",
-                 pictures: bool = True, platen_stiffness: float = 2.0,
+                 pictures: bool = True, ends: str = "auto", platen_stiffness: float = 2.0,
                  **plan_options) -> None:
         super().__init__(out, np_=np_, progress=progress, pictures=pictures)
         if not (math.isfinite(platen_stiffness) and 0 < platen_stiffness <= MAX_PLATEN_STIFFNESS):
@@ -281,6 +325,7 @@ class RockTest(Study):
         self.energy = energy
         self.shear_frame = shear_frame
         self.atom_style = atom_style
+        self.ends_choice = check_ends(ends)
         self.plan_options = plan_options
         self.confining = plan_options.get("confining", 0.0)
         # the periodic test is a tension test without platens
@@ -294,6 +339,7 @@ class RockTest(Study):
             self.bond = rock_to_bond(r.E, r.nu, r.Tu, r.Cu, r.mu_i, self.d, self.dim)
         self.lattice = test_lattice(self.dim, self.n, self.d, self.test, self.orientation)
         self.plan = plan_test(self.rock, self.bond, self.lattice, self.test, **self.plan_options)
+        self.ends = choose_ends(self.lattice, self.test, self.ends_choice)
 
     def _write(self) -> Path:
         plan = self.plan
@@ -304,7 +350,7 @@ class RockTest(Study):
         deck = self.out / f"in.{self.test}"
         self.spec = deck_spec(plan, self.test, self.dim, self.bond, self.confining,
                               self.dump_every, has_mid_height(self.lattice), self.energy,
-                              self.shear_frame, atom_style=self.atom_style,
+                              self.shear_frame, atom_style=self.atom_style, ends=self.ends,
                               wall_kn=self.platen_stiffness * self.bond.Kn)
         write_deck(self.spec, deck)
         return deck
@@ -361,6 +407,7 @@ class RockTest(Study):
             "n": self.n,
             "confining_Pa": self.confining,
             "orientation_deg": self.orientation,
+            "ends": {"tension": "layers", "periodic": None}.get(self.test, self.ends),
             "platen_stiffness": self.platen_stiffness,
             "ranks": self.np_,
             "plan": asdict(plan),
@@ -382,7 +429,7 @@ class RockTest(Study):
 def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int = 2,
              d: float = 1.0e-3, progress: bool = True, bond: BondParameters | None = None,
              dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
-             shear_frame: str = "fixed", atom_style: str = "atomic",
+             shear_frame: str = "fixed", atom_style: str = "atomic", ends: str = "auto",
              platen_stiffness: float = 2.0, **plan_options) -> dict:
     """Run one test end to end (:class:`RockTest`) and return the summary (also written to
     summary.json).
@@ -391,6 +438,9 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
         each particle's local rigid rotation; pair_style lattice/bond keyword shear_frame).
     atom_style: ``atomic`` (equal particles: per-type mass, the pair style's diameter;
         the default, 64 bytes less per particle than ``sphere``) or ``sphere``.
+    ends: how compression, elastic and confined tests load the ends: ``auto`` (the
+        default: the papers' platens for flat ends, held end layers for stepped ones),
+        ``platens`` or ``layers`` (:func:`choose_ends`).
 
     bond: bond parameters to use instead of the rock's converted ones (calibration);
         the targets stay the rock's properties.
@@ -400,7 +450,7 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
     """
     return RockTest(rock, dim, test, n, out, np_=np_, d=d, progress=progress, bond=bond,
                     dump_every=dump_every, orientation=orientation, energy=energy,
-                    shear_frame=shear_frame, atom_style=atom_style,
+                    shear_frame=shear_frame, atom_style=atom_style, ends=ends,
                     platen_stiffness=platen_stiffness, **plan_options).run()
 
 

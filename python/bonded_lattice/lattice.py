@@ -321,6 +321,35 @@ def close_packed_block_3d(n_y: int, d: float, aspect: float = 1.0,
     return block_3d(size_x, n_y * d, size_z, d, stacking)
 
 
+ORIENTATIONS_3D = (0.0, 90.0)   # of turned_block_3d: layers across the load, rows along it
+
+
+def turned_block_3d(lattice: Lattice, orientation: float) -> Lattice:
+    """A 3D block (loading axis z) turned about x by ``orientation`` degrees, 0 or 90.
+
+    0: the block as it is (the 2017 paper's set-up: close-packed layers across the load).
+    90: (x, y, z) -> (x, -z, y), moved back so its lower corner centre is again at
+    (d/2, d/2, d/2): the close-packed rows, which ran along y, now run along the loading
+    axis z (one bond family along the load), and the close-packed layers stand upright, in
+    the xz plane.  The ends are then stepped: rows alternate n_y and n_y - 1 elements, so
+    the end faces hold elements at 0 and d/2 from the end.  Other angles would cut the
+    lattice obliquely, which the 3D generator does not do: a ValueError names the two.
+    """
+    if lattice.dim != 3:
+        raise ValueError(f"lattice.dim = {lattice.dim}: turned_block_3d turns 3D blocks")
+    if orientation not in ORIENTATIONS_3D:
+        raise ValueError(f"orientation = {orientation} is out of range in 3D: use one of "
+                         f"{', '.join(f'{o:g}' for o in ORIENTATIONS_3D)} (degrees about x: "
+                         "layers across the load, or rows along it)")
+    if orientation == 0.0:
+        return lattice
+    p = lattice.positions
+    pos = np.stack([p[:, 0], -p[:, 2], p[:, 1]], axis=1)
+    pos += 0.5 * lattice.d - pos.min(axis=0)
+    pos = _sorted(pos, lattice.d, 3)
+    return Lattice(pos, lattice.d, 3, _box(pos, lattice.d, 3))
+
+
 def contact_pairs(lattice: Lattice, rtol: float = 1e-6) -> np.ndarray:
     """Index pairs (i < j) of touching particles: | |ri - rj| - d | <= rtol d.
 

@@ -37,6 +37,10 @@ PAPER: dict[str, PaperValue] = {
                                              "unit's Cu test"),
     "2d.unit.Tu_strain": PaperValue(2.71e-4, "Liu 2013, para. 50: failure strain of the "
                                              "unit's Tu test"),
+    "2d.anisotropy.direction_deg": PaperValue(
+        90.0, "Liu 2013, para. 55: the formulas are validated with the load vertical, at 90 "
+              "degrees to the close-packed rows (by the unit's symmetry also at 30 and 150); "
+              "E and Tu 'a bit lower along other directions'"),
     # 2017, 3D
     "3d.unit.Tu": PaperValue(-0.00011, "Liu 2017, section 5.2: one unit 0.011% below"),
     "3d.unit.Cu": PaperValue(-0.0173, "Liu 2017, section 5.2: one unit 1.73% below"),

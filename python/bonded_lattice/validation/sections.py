@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from .anisotropy import ANISOTROPY
 from .blocks import SERIES, STRAIN, UNITS
 from .energy import ENERGY
 from .friction import CALIBRATION, ENVELOPE
@@ -14,7 +15,7 @@ from .section import Section
 __all__ = ["SECTIONS", "section_names"]
 
 SECTIONS: list[Section] = [UNITS, SERIES, LADDER, LOADING_3D, FAILURE_MAP, STRAIN, SCHEDULE,
-                           ENERGY, ENVELOPE, CALIBRATION]
+                           ENERGY, ENVELOPE, CALIBRATION, ANISOTROPY]
 
 
 def section_names() -> list[str]:
