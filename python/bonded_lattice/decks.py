@@ -10,6 +10,9 @@ and loads the block along its loading axis (y in 2D, z in 3D):
   toward each other at ``speed``;
 - ``elastic``: compression to a small strain with breaking switched off
   (``Xb`` and ``Fs0`` multiplied by 100, as in Liu et al. 2017), for E and nu;
+  with ``elastic_load = "tension"`` the end layers are pulled apart instead, as
+  in the tension test (Liu 2013, para. 46: E and nu change with the strain
+  magnitude in opposite senses under tension and compression);
 - ``confined``: compression between the platens while smooth side walls
   (``fix lattice/wall ... servo``) hold the confining stress ``confining``
   (biaxial in 2D, triaxial in 3D);
@@ -59,6 +62,8 @@ from .lattice import check_atom_style
 from .schedules import SCHEDULES  # the loading schedules' one vocabulary
 
 TESTS = ("tension", "compression", "elastic", "confined", "periodic")
+# how the elastic test loads: platens (compression) or end layers pulled apart (tension)
+ELASTIC_LOADS = ("compression", "tension")
 # the per-step log of a deck with the energy budget (fix ave/time, read by
 # io.read_ave_time): the breaking heat of the normal and of the shear springs
 # (compute lattice/energy), the bonds broken in tension and in shear, the kinetic
@@ -102,6 +107,7 @@ class DeckSpec:
     atom_style: str = "sphere"
     strain_rate: float = 0.0  # periodic: axial strain rate of fix deform (1/s)
     modulus: float = 0.0      # periodic: the barostat's estimate of the lattice's stiffness (Pa)
+    elastic_load: str = "compression"  # elastic test: one of ELASTIC_LOADS
 
     def __post_init__(self) -> None:
         if self.test not in TESTS:
@@ -114,6 +120,12 @@ class DeckSpec:
             raise ValueError(f"shear_frame = {self.shear_frame!r} is not known: use one of "
                              f"{', '.join(SHEAR_FRAMES)}")
         check_atom_style(self.atom_style)
+        if self.elastic_load not in ELASTIC_LOADS:
+            raise ValueError(f"elastic_load = {self.elastic_load!r} is not known: use one of "
+                             f"{', '.join(ELASTIC_LOADS)}")
+        if self.elastic_load != "compression" and self.test != "elastic":
+            raise ValueError(f"elastic_load = {self.elastic_load!r} is for the elastic test "
+                             f"only (test = {self.test!r})")
         if self.schedule not in SCHEDULES:
             raise ValueError(f"schedule = {self.schedule!r} is not known: use one of "
                              f"{', '.join(SCHEDULES)}")
@@ -163,6 +175,13 @@ class DeckSpec:
         return "y" if self.dim == 2 else "z"
 
     @property
+    def pulls(self) -> bool:
+        """Whether the end layers are pulled apart (the tension test, the elastic test in
+        tension) rather than pressed by platens."""
+        return self.test == "tension" or (self.test == "elastic"
+                                          and self.elastic_load == "tension")
+
+    @property
     def lateral_axes(self) -> tuple[str, ...]:
         """The axes across the load: x in 2D, x and y in 3D."""
         return ("x",) if self.dim == 2 else ("x", "y")
@@ -190,7 +209,8 @@ def _header(spec: DeckSpec) -> str:
     title = {
         "tension": "Uniaxial tension between two smooth planes holding the end layers",
         "compression": "Uniaxial compression between two smooth platens (fix lattice/wall, mu 0)",
-        "elastic": "Elastic test: small compression with unbreakable bonds (Xb, Fs0 x 100)",
+        "elastic": f"Elastic test: small {spec.elastic_load} with unbreakable bonds "
+                   "(Xb, Fs0 x 100)",
         "confined": f"Confined compression: platens plus side walls holding {spec.confining:g} Pa",
         "periodic": "Uniaxial tension of a periodic cell: no platens, no free surfaces",
     }[spec.test]
@@ -301,7 +321,7 @@ fix             free all press/berendsen {free} couple none modulus {spec.modulu
 compute         pvir all pressure NULL virial
 variable        stress equal -c_pvir[{k}]
 """
-    if spec.test == "tension":
+    if spec.pulls:
         if spec.schedule == "constant":
             title = f"end layers moving apart at {spec.speed:g} m/s"
             move_top = f"linear {_vector(ax, f'{spec.speed:.6g}', 'NULL')}"
@@ -398,7 +418,7 @@ fix             stop all halt {spec.thermo_every} v_failed > 0.5 error continue
     if spec.energy:
         # after the fixes that add forces, as compute lattice/energy requires; the
         # end layers' prescribed motion does external work in tension
-        energy, columns = energy_budget("top bottom" if spec.test == "tension" else "")
+        energy, columns = energy_budget("top bottom" if spec.pulls else "")
     table = thermo(f"step time v_strain v_lateral v_gauge v_stress {BOND_COUNTS} ke{columns}",
                    spec.thermo_every, flush=True)
     full = "modify sort id format float %.17g"

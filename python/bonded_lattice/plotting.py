@@ -300,3 +300,8 @@ def angle_histogram_png(path: str | Path, series: list[tuple[str, np.ndarray]],
     ax.legend(fontsize=7)
     ax.set_title(title, fontsize=9)
     save_png(fig, path)
+
+
+def pyplot():
+    """matplotlib.pyplot with the file-only Agg backend, for figure code outside this module."""
+    return _pyplot()
