@@ -10,6 +10,8 @@ a twentieth of its peak, and, in 2D, reads the series' run of the same block (th
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..conversion import c_open
@@ -79,9 +81,16 @@ def _zooms(f: dict) -> dict[str, tuple[int, int]]:
             "peak": (max(0, pre_b - max(span_b // 2, 40)), f["B"]["row"] + 40)}
 
 
-def _features(table: dict) -> dict:
+def crossing_rows(run: dict, thermo_every: int, rock) -> int:
+    """Thermo rows in one elastic-wave crossing of the (square) block: its width over
+    sqrt(E / rho), in time steps dt of the run's plan, over ``thermo_every``."""
+    crossing = run["lateral_width_m"] / math.sqrt(rock.E / rock.rho)
+    return int(math.ceil(crossing / (run["plan"]["dt"] * thermo_every)))
+
+
+def _features(table: dict, lag: int) -> dict:
     return curve_features(-table["v_strain"], -table["v_stress"], table["c_bonds[2]"],
-                          table["c_bonds[3]"], float(table["c_bonds[1]"][0]))
+                          table["c_bonds[3]"], float(table["c_bonds[1]"][0]), lag)
 
 
 def run_curve(v: Validation, dim: int) -> dict:
@@ -92,7 +101,8 @@ def run_curve(v: Validation, dim: int) -> dict:
     run = v.run(name, rock, dim, "compression", spec["n"], thermo_every=spec["thermo_every"],
                 halt_fraction=HALT_FRACTION)
     table = read_thermo(v.folder(name) / "log.lammps")[-1]
-    f = _features(table)
+    lag = crossing_rows(run, spec["thermo_every"], rock)
+    f = _features(table, lag)
     keep = keep_rows(len(table["v_strain"]), _feature_rows(f))
     curve = {"row": [int(i) for i in keep]}
     for c in COLUMNS:
@@ -100,16 +110,17 @@ def run_curve(v: Validation, dim: int) -> dict:
     E_line = rock.E / (1.0 - rock.nu**2) if dim == 2 else rock.E
     data = {"dim": dim, "n": spec["n"], "folder": name, "run": run,
             "thermo_every": spec["thermo_every"], "rows": len(table["v_strain"]),
-            "halt_fraction": HALT_FRACTION, "features": f, "curve": curve,
+            "halt_fraction": HALT_FRACTION, "lag_rows": lag, "features": f, "curve": curve,
             "target": {"Cu": rock.Cu, "C_open": c_open(rock.Tu, rock.nu, dim),
                        "E_line": E_line}}
     coarse = spec["coarse"]
     if coarse is not None and (v.folder(coarse) / "log.lammps").exists():
         ct = read_thermo(v.folder(coarse) / "log.lammps")[-1]
-        cf = _features(ct)
         steps = ct["Step"]
+        every = int(steps[1] - steps[0])
+        cf = _features(ct, crossing_rows(run, every, rock))
         data["coarse"] = {"folder": coarse, "rows": len(steps),
-                          "thermo_every": int(steps[1] - steps[0]),
+                          "thermo_every": every,
                           "before_A": cf["before_A"], "A": cf["A"], "opening": len(cf["opening"]),
                           "first_break": cf["first_break"], "B": cf["B"]}
     return data
@@ -246,8 +257,9 @@ def doc_curve(data: dict, ctx: DocContext) -> list[str]:
          "features are found from the curve and the broken-bond counts "
          "(`bonded_lattice.validation.curve_features`): a drop is a fall of the stress by at "
          f"least {f['drop_min'] / 1e6:.2f} MPa (a thousandth of the peak, above the loading's "
-         "ringing) with bonds broken between the trough before it and its own trough; "
-         "stress / Cu is over the formula's Cu.", ""]
+         f"ringing) with bonds broken from one wave crossing ({data['lag_rows']} rows) before "
+         "its top (but after the trough before it) to its bottom; stress / Cu is over the "
+         "formula's Cu.", ""]
     L += feature_table(data)
     a = f["A"]
     if a is not None:

@@ -10,8 +10,9 @@ stress has fallen to almost zero.  :func:`curve_features` finds them:
 - drops: the falls of a zig-zag of the stress with reversal amplitude ``drop_min`` (a fall
   counts once the stress has come down by ``drop_min`` from its highest value since the last
   trough; it ends at the lowest value before the stress climbs ``drop_min`` back), each with
-  the bonds broken, in tension and in shear, from the trough before it to its own trough (a
-  bond's unloading reaches the platens up to a wave crossing after it broke);
+  the bonds broken, in tension and in shear, from ``lag`` rows before its top (but not before
+  the trough before it) to its bottom: a bond's unloading reaches the platens up to a wave
+  crossing after it broke;
 - A: the first drop that ends once the bonds broken in tension exceed ``open_fraction`` of
   the initial bonds (the definition of C_open in :mod:`bonded_lattice.analysis`, which keeps
   the few early boundary breaks out of it);
@@ -75,7 +76,7 @@ def _point(strain: np.ndarray, stress: np.ndarray, i: int) -> dict:
 
 
 def curve_features(strain: np.ndarray, stress: np.ndarray, broken_tension: np.ndarray,
-                   broken_shear: np.ndarray, intact0: float,
+                   broken_shear: np.ndarray, intact0: float, lag: int,
                    drop_fraction: float = DROP_FRACTION,
                    open_fraction: float = C_OPEN_FRACTION,
                    opened_fraction: float = OPENED_FRACTION,
@@ -83,7 +84,9 @@ def curve_features(strain: np.ndarray, stress: np.ndarray, broken_tension: np.nd
     """The features of a compressive curve (module docstring).
 
     strain, stress: magnitudes (compression positive), one value per thermo row;
-    broken_tension, broken_shear: bonds broken so far; intact0: bonds at the start.
+    broken_tension, broken_shear: bonds broken so far; intact0: bonds at the start; lag:
+    thermo rows in one elastic-wave crossing of the block (a drop's bonds are counted from
+    that many rows before its top).
     Returns {"first_break", "opened", "B", "C": point or None, "first_break_bonds", "A": drop
     or None, "before_A", "opening", "before_B", "drops": lists of drops, "E_OA": slope of O-A
     (a least-squares line over the rows before the first break with a tenth to nine tenths
@@ -97,6 +100,8 @@ def curve_features(strain: np.ndarray, stress: np.ndarray, broken_tension: np.nd
         raise ValueError("strain, stress and the broken-bond counts need the same length >= 3")
     if not intact0 > 0:
         raise ValueError(f"intact0 = {intact0} is out of range: need intact0 > 0")
+    if lag < 0:
+        raise ValueError(f"lag = {lag} is out of range: need lag >= 0 (thermo rows)")
     for name, value in (("drop_fraction", drop_fraction), ("open_fraction", open_fraction),
                         ("opened_fraction", opened_fraction), ("c_fraction", c_fraction)):
         if not 0 < value < 1:
@@ -106,10 +111,11 @@ def curve_features(strain: np.ndarray, stress: np.ndarray, broken_tension: np.nd
     broken = bt + bs
     drops = []
     for trough, top, bottom in zigzag_drops(sig, drop_min):
+        start = max(trough, top - lag)
         drops.append({"top": _point(eps, sig, top), "bottom": _point(eps, sig, bottom),
                       "size": float(sig[top] - sig[bottom]),
-                      "tension": int(bt[bottom] - bt[trough]),
-                      "shear": int(bs[bottom] - bs[trough])})
+                      "tension": int(bt[bottom] - bt[start]),
+                      "shear": int(bs[bottom] - bs[start])})
     breaking = [dr for dr in drops if dr["tension"] + dr["shear"] > 0]
     opened = np.nonzero(bt > open_fraction * intact0)[0]
     a_drop = None
