@@ -17,7 +17,9 @@ import numpy as np
 from ..conversion import c_open
 from ..io import read_thermo
 from ..plotting import pyplot, save_png
-from .curve_features import curve_features, keep_rows
+from ..analysis import C_OPEN_FRACTION
+from .curve_features import (C_FRACTION, DROP_FRACTION, OPENED_FRACTION, curve_features,
+                             keep_rows)
 from .doc import DocContext
 from .papers import PAPER
 from .runner import Validation, rock_for
@@ -111,6 +113,8 @@ def run_curve(v: Validation, dim: int) -> dict:
     data = {"dim": dim, "n": spec["n"], "folder": name, "run": run,
             "thermo_every": spec["thermo_every"], "rows": len(table["v_strain"]),
             "halt_fraction": HALT_FRACTION, "lag_rows": lag, "features": f, "curve": curve,
+            "fractions": {"drop": DROP_FRACTION, "open": C_OPEN_FRACTION,
+                          "opened": OPENED_FRACTION, "c": C_FRACTION},
             "target": {"Cu": rock.Cu, "C_open": c_open(rock.Tu, rock.nu, dim),
                        "E_line": E_line}}
     coarse = spec["coarse"]
@@ -136,6 +140,14 @@ def _drop_cells(dr: dict, cu: float) -> list[str]:
     return _pt(dr["top"], cu) + [f"{dr['size'] / 1e6:.2f}", f"{dr['tension']} / {dr['shear']}"]
 
 
+def _drop_rows(drops: list[dict], label: str, words: str, cu: float) -> list[str]:
+    """Table rows of a list of drops, the paper's words on the first; 'none found' if empty."""
+    if not drops:
+        return [f"| {label} | none found | | | | | {words} |"]
+    return [f"| {label} ({k + 1}) | " + " | ".join(_drop_cells(dr, cu))
+            + f" | {words if k == 0 else ''} |" for k, dr in enumerate(drops)]
+
+
 def feature_table(data: dict) -> list[str]:
     """The features' strain, stress, stress / Cu of the formula, drop and bonds, and what the
     paper says of each."""
@@ -150,30 +162,23 @@ def feature_table(data: dict) -> list[str]:
     if fb is not None:
         L.append("| first broken bonds | " + " | ".join(_pt(fb, cu)) + f" | | "
                  f"{f['first_break_bonds']} | |")
-    if f["before_A"]:
-        for k, dr in enumerate(f["before_A"]):
-            L.append(f"| drop before {names['A']} ({k + 1}) | " + " | ".join(_drop_cells(dr, cu))
-                     + f" | {words['before_A'] if k == 0 else ''} |")
-    else:
-        L.append(f"| drop before {names['A']} | none found | | | | | {words['before_A']} |")
+    fr = data["fractions"]
+    L += _drop_rows(f["before_A"], f"drop before {names['A']}", words["before_A"], cu)
     if f["A"] is not None:
-        L.append(f"| {names['A']} (top of the first drop once 1% of the bonds are broken in "
-                 "tension) | " + " | ".join(_drop_cells(f["A"], cu)) + f" | {words['A']} |")
+        L.append(f"| {names['A']} (top of the first drop once {100 * fr['open']:g}% of the "
+                 "bonds are broken in tension) | " + " | ".join(_drop_cells(f["A"], cu))
+                 + f" | {words['A']} |")
     op = f["opening"]
     if op:
         big = max(op, key=lambda dr: dr["size"])
         L.append(f"| largest of the {len(op)} drops while the block opens | "
                  + " | ".join(_drop_cells(big, cu)) + " | |")
-    L.append("| end of the opening (95% of the tension breaks) | "
+    L.append(f"| end of the opening ({100 * fr['opened']:g}% of the tension breaks) | "
              + " | ".join(_pt(f["opened"], cu)) + f" | | | {words['opening']} |")
-    if f["before_B"]:
-        for k, dr in enumerate(f["before_B"]):
-            L.append(f"| drop before {names['B']} ({k + 1}) | " + " | ".join(_drop_cells(dr, cu))
-                     + f" | {words['before_B'] if k == 0 else ''} |")
-    else:
-        L.append(f"| drop before {names['B']} | none found | | | | | {words['before_B']} |")
+    L += _drop_rows(f["before_B"], f"drop before {names['B']}", words["before_B"], cu)
     L.append(f"| {names['B']} (peak) | " + " | ".join(_pt(f["B"], cu)) + f" | | | {words['B']} |")
-    L.append(f"| {names['C']} (end of the drop) | " + " | ".join(_pt(f["C"], cu))
+    L.append(f"| {names['C']} (end of the drop: within {fr['c']:g} of the fall from the "
+             "peak to the lowest stress) | " + " | ".join(_pt(f["C"], cu))
              + f" | | | {words['C']} |")
     return L
 
@@ -256,17 +261,21 @@ def doc_curve(data: dict, ctx: DocContext) -> list[str]:
          f"fell below {data['halt_fraction']:g} of its peak or the planned steps ended.  The "
          "features are found from the curve and the broken-bond counts "
          "(`bonded_lattice.validation.curve_features`): a drop is a fall of the stress by at "
-         f"least {f['drop_min'] / 1e6:.2f} MPa (a thousandth of the peak, above the loading's "
-         f"ringing) with bonds broken from one wave crossing ({data['lag_rows']} rows) before "
+         f"least {f['drop_min'] / 1e6:.2f} MPa ({data['fractions']['drop']:g} of the peak, "
+         "above the loading's ringing) with bonds broken from one wave crossing "
+         f"({data['lag_rows']} rows) before "
          "its top (but after the trough before it) to its bottom; stress / Cu is over the "
-         "formula's Cu.", ""]
+         "formula's Cu; the O-A slope is over the formula's E"
+         + (", in 2D the in-plane modulus of plane strain E / (1 - nu^2), the slope a 2D "
+            "test measures" if dim == 2 else "") + ".", ""]
     L += feature_table(data)
     a = f["A"]
     if a is not None:
         L += ["", f"{PAPER_NAMES[dim]['A']} at {a['top']['stress'] / 1e6:.2f} MPa is "
               f"{a['top']['stress'] / data['target']['C_open']:.3f} of the formula's C_open "
               f"({data['target']['C_open'] / 1e6:.1f} MPa; the run's C_open, the last row "
-              f"before 1% of the bonds are broken in tension: "
+              f"before {100 * data['fractions']['open']:g}% of the bonds are broken in "
+              "tension: "
               f"{run['measured'].get('C_open', 0) / 1e6:.2f} MPa)."]
     co = data.get("coarse")
     if co is not None:
