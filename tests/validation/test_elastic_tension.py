@@ -98,3 +98,26 @@ def test_elastic_load_is_checked():
     with pytest.raises(ValueError, match="thermo_every = 0"):
         plan_test(rock, bond, lattice, "elastic", thermo_every=0)
     assert plan_test(rock, bond, lattice, "elastic", thermo_every=7).thermo_every == 7
+
+
+def test_elastic_tension_deck():
+    """The elastic test in tension pulls its end layers as the tension test does (fix move,
+    the inner particles integrated and damped), with the elastic test's unbreakable bonds
+    (Xb, Fs0 x 100) and no platens; elastic_load is refused on the other tests."""
+    from bonded_lattice.decks import DeckSpec, deck_text
+
+    rock = get_rock("quartz")
+    bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, 1e-3, 2)
+    spec = dict(dim=2, d=1e-3, bond=bond, data_file="x", area=0.03, eta=1.0, speed=0.01,
+                steps=10)
+    pulled = deck_text(DeckSpec(test="elastic", elastic_load="tension", **spec))
+    tension = deck_text(DeckSpec(test="tension", **spec))
+    pressed = deck_text(DeckSpec(test="elastic", **spec))
+    loading = tension[tension.index("# ---- loading"):tension.index("# ---- output")]
+    assert loading in pulled and loading not in pressed
+    assert "fix             bottom all lattice/wall" not in pulled
+    assert "fix             bottom all lattice/wall" in pressed
+    assert f"{100 * bond.Xb:.6g}" in pulled and f"{100 * bond.Fs0:.6g}" in pulled
+    assert "small tension with unbreakable bonds" in pulled
+    with pytest.raises(ValueError, match="for the elastic test only"):
+        DeckSpec(test="compression", elastic_load="tension", **spec)

@@ -11,11 +11,12 @@ a twentieth of its peak, and, in 2D, reads the series' run of the same block (th
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 
 from ..conversion import c_open
-from ..io import read_thermo
+from ..io import read_atom_dump, read_atom_frame, read_thermo
 from ..plotting import pyplot, save_png
 from ..analysis import C_OPEN_FRACTION
 from .curve_features import (C_FRACTION, DROP_FRACTION, OPENED_FRACTION, curve_features,
@@ -30,6 +31,8 @@ __all__ = ["COMPRESSION_CURVE", "COMPRESSION_CURVE_3D", "CURVES"]
 # per dimension: block size, thermo interval (time steps), the series' run to compare with
 CURVES = {2: {"n": 30, "thermo_every": 5, "coarse": "2d/n30_compression"},
           3: {"n": 12, "thermo_every": 4, "coarse": None}}
+# a trajectory frame every this many thermo rows: where the first bonds break
+DUMP_ROWS = 20
 HALT_FRACTION = 0.05
 COLUMNS = ("v_strain", "v_stress", "c_bonds[1]", "c_bonds[2]", "c_bonds[3]")
 
@@ -101,7 +104,7 @@ def run_curve(v: Validation, dim: int) -> dict:
     rock = rock_for(dim)
     name = f"{dim}d/curve_n{spec['n']}_compression"
     run = v.run(name, rock, dim, "compression", spec["n"], thermo_every=spec["thermo_every"],
-                halt_fraction=HALT_FRACTION)
+                halt_fraction=HALT_FRACTION, dump_every=DUMP_ROWS * spec["thermo_every"])
     table = read_thermo(v.folder(name) / "log.lammps")[-1]
     lag = crossing_rows(run, spec["thermo_every"], rock)
     f = _features(table, lag)
@@ -117,6 +120,8 @@ def run_curve(v: Validation, dim: int) -> dict:
                           "opened": OPENED_FRACTION, "c": C_FRACTION},
             "target": {"Cu": rock.Cu, "C_open": c_open(rock.Tu, rock.nu, dim),
                        "E_line": E_line}}
+    data["sites"] = first_sites(v.folder(name), table, f, DUMP_ROWS * spec["thermo_every"],
+                                dim, run["plan"]["d"])
     coarse = spec["coarse"]
     if coarse is not None and (v.folder(coarse) / "log.lammps").exists():
         ct = read_thermo(v.folder(coarse) / "log.lammps")[-1]
@@ -128,6 +133,41 @@ def run_curve(v: Validation, dim: int) -> dict:
                           "before_A": cf["before_A"], "A": cf["A"], "opening": len(cf["opening"]),
                           "first_break": cf["first_break"], "B": cf["B"]}
     return data
+
+
+def break_sites(folder: Path, step: int, dim: int, d: float) -> dict:
+    """Where the bonds broken in tension by time step ``step`` are: the particles that lost
+    one, and how many of them lie in the block's outer layer (centre within 0.6 d of a face in
+    the initial configuration) and in that of its free side faces (across the load), from the
+    frame of ``dump.lammpstrj`` at ``step``."""
+    names0, initial = read_atom_dump(folder / "dump.initial")
+    names, frame = read_atom_frame(folder / "dump.lammpstrj", step)
+    axes = ("x", "y") if dim == 2 else ("x", "y", "z")
+    pos = np.column_stack([initial[:, names0.index(a)] for a in axes])
+    face = [(pos[:, k] < pos[:, k].min() + 0.6 * d) | (pos[:, k] > pos[:, k].max() - 0.6 * d)
+            for k in range(len(axes))]
+    outer, sides = np.logical_or.reduce(face), np.logical_or.reduce(face[:-1])
+    lost = frame[:, names.index("c_ntension")]
+    damaged = lost > 0
+    return {"step": int(step), "bonds": int(round(lost.sum() / 2)),
+            "particles": int(damaged.sum()), "outer": int((damaged & outer).sum()),
+            "sides": int((damaged & sides).sum()), "outer_share_of_block": float(outer.mean()),
+            "sides_share_of_block": float(sides.mean())}
+
+
+def first_sites(folder: Path, table: dict, f: dict, every: int, dim: int, d: float) -> dict:
+    """:func:`break_sites` at the first frame with bonds broken in tension and at the last
+    frame before A's top (frames every ``every`` time steps from step 0)."""
+    steps = table["Step"]
+    out = {}
+    if f["first_break"] is not None:
+        first = int(steps[f["first_break"]["row"]])
+        out["first"] = break_sites(folder, every * -(-first // every), dim, d)
+    if f["A"] is not None:
+        top = int(steps[f["A"]["top"]["row"]])
+        if "first" in out and every * (top // every) > out["first"]["step"]:
+            out["before_A"] = break_sites(folder, every * (top // every), dim, d)
+    return out
 
 
 def _pt(p: dict | None, cu: float) -> list[str]:
@@ -277,6 +317,16 @@ def doc_curve(data: dict, ctx: DocContext) -> list[str]:
               f"before {100 * data['fractions']['open']:g}% of the bonds are broken in "
               "tension: "
               f"{run['measured'].get('C_open', 0) / 1e6:.2f} MPa)."]
+    sites = data.get("sites", {})
+    for key, what in (("first", "At the first trajectory frame with bonds broken in tension"),
+                      ("before_A", f"At the last frame before {PAPER_NAMES[dim]['A']}")):
+        st = sites.get(key)
+        if st is not None:
+            L += ["", f"{what} (time step {st['step']}): {st['bonds']} bonds, "
+                  f"{st['particles']} particles lost one, {st['outer']} of them in the outer "
+                  f"layer of the block (which holds {100 * st['outer_share_of_block']:.0f}% of "
+                  f"its particles), {st['sides']} in that of its free side faces "
+                  f"({100 * st['sides_share_of_block']:.0f}%)."]
     co = data.get("coarse")
     if co is not None:
         ca = co["A"]
