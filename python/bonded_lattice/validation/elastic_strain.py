@@ -120,7 +120,7 @@ def elastic_strain_png(path, data: dict, dim: str) -> None:
             for load, style in (("compression", "-"), ("tension", "--")):
                 err = [100 * r["secant"][key] for r in d[load][k]]
                 ax.plot(strains, err, style, marker="o", ms=3, color=colours[k],
-                        label=f"{particles} particles" if load == "compression" else None)
+                        label=f"{particles} {_things(dim)}" if load == "compression" else None)
         ax.set_xscale("log")
         ax.axhline(0, color="k", lw=0.6)
         ax.set_xlabel("axial strain magnitude (solid: compression, dashed: tension)")
@@ -132,9 +132,13 @@ def elastic_strain_png(path, data: dict, dim: str) -> None:
     save_png(fig, path)
 
 
+def _things(dim: str) -> str:
+    return "particles" if dim == "2" else "elements"
+
+
 def _table(d: dict, strains: list[float], key: str, dim: str) -> list[str]:
     size = "N" if dim == "2" else "n_y"
-    L = [f"| {size} | particles | load | " + " | ".join(f"{s:g}" for s in strains) + " |",
+    L = [f"| {size} | {_things(dim)} | load | " + " | ".join(f"{s:g}" for s in strains) + " |",
          "|---|---|---|" + "---|" * len(strains)]
     for k, n in enumerate(d["sizes"]):
         for load in LOADS:
@@ -172,7 +176,7 @@ def doc_elastic_strain(data: dict, ctx: DocContext) -> list[str]:
         k3 = strains.index(1e-3) if 1e-3 in strains else None
         if dim == "2" and k3 is not None:
             c3, t3 = unit_c[k3]["secant"], unit_t[k3]["secant"]
-            L += ["", f"Single unit ({unit_c[0]['particles']} particles) at "
+            L += ["", f"Single unit ({unit_c[0]['particles']} {_things(dim)}) at "
                   f"-{strains[k3]:g}: E {pct(c3['E'], 4)}, nu {pct(c3['nu'], 4)}; the paper "
                   f"(Liu 2013, para. 47): E {paper_pct('2d.unit.E_1e-3', 3)}, nu "
                   f"{paper_pct('2d.unit.nu_1e-3', 3)}.  In tension at +{strains[k3]:g}: E "
@@ -181,7 +185,7 @@ def doc_elastic_strain(data: dict, ctx: DocContext) -> list[str]:
         for k, n in enumerate(d["sizes"]):
             dc = {key: _change(d["compression"][k], key) for key in ("E", "nu")}
             dt = {key: _change(d["tension"][k], key) for key in ("E", "nu")}
-            signs.append(f"{d['compression'][k][0]['particles']} particles: compression E "
+            signs.append(f"{d['compression'][k][0]['particles']} {_things(dim)}: compression E "
                          f"{dc['E']}, nu {dc['nu']}; tension E {dt['E']}, nu {dt['nu']}")
         L += ["", f"Change of the secant errors from {strains[0]:g} to {strains[-1]:g} "
               "(percentage points): " + "; ".join(signs) + "."]
