@@ -25,7 +25,7 @@ import inspect
 from dataclasses import MISSING, dataclass, field, fields
 from typing import Any, Callable
 
-from .decks import SHEAR_FRAMES, TESTS
+from .decks import ELASTIC_LOADS, SHEAR_FRAMES, TESTS
 from .experiment import END_CHOICES, plan_test, run_test
 from .grains import GrainModel, GrainPairOptions
 from .lattice import ATOM_STYLES
@@ -171,6 +171,9 @@ def test_options(p: argparse.ArgumentParser, test: bool = True, choose_test: boo
         f"{_loading_default('damping')}: docs/speed_error.md)")
     p.add_argument("--elastic-strain", type=float, default=lib["elastic_strain"],
                    help="axial strain reached by --test elastic (default %(default)g)")
+    p.add_argument("--elastic-load", choices=ELASTIC_LOADS, default=lib["elastic_load"],
+                   help="--test elastic: compression between the platens (default) or "
+                   "tension, the end layers pulled apart; bonds unbreakable either way")
     p.add_argument("--orientation", type=float, default=lib["orientation"],
                    help="2D: degrees from the x axis to the close-packed rows (default "
                    "%(default)g, the papers' set-up; 30 puts one bond family along the load); "
@@ -285,5 +288,7 @@ def plan_options(args: argparse.Namespace) -> dict:
     return {"crossings": args.crossings, "speed": args.speed,
             "confining": getattr(args, "confining", 0.0),
             "schedule": args.schedule, "damping": args.damping,
-            "elastic_strain": args.elastic_strain, "step_size": args.step_size,
+            "elastic_strain": args.elastic_strain,
+            "elastic_load": args.elastic_load,
+            "step_size": args.step_size,
             "relax_steps": args.relax_steps}

@@ -13,6 +13,9 @@ and loads the block along its loading axis (y in 2D, z in 3D):
   ``elastic`` and ``confined``);
 - ``elastic``: compression to a small strain with breaking switched off
   (``Xb`` and ``Fs0`` multiplied by 100, as in Liu et al. 2017), for E and nu;
+  with ``elastic_load = "tension"`` the end layers are pulled apart instead, as
+  in the tension test (Liu 2013, para. 46: E and nu change with the strain
+  magnitude in opposite senses under tension and compression);
 - ``confined``: compression between the platens while smooth side walls
   (``fix lattice/wall ... servo``) hold the confining stress ``confining``
   (biaxial in 2D, triaxial in 3D);
@@ -64,6 +67,8 @@ from .schedules import SCHEDULES  # the loading schedules' one vocabulary
 TESTS = ("tension", "compression", "elastic", "confined", "periodic")
 # how the ends are loaded (DeckSpec.ends)
 ENDS = ("platens", "layers")
+# how the elastic test loads: platens (compression) or end layers pulled apart (tension)
+ELASTIC_LOADS = ("compression", "tension")
 # the per-step log of a deck with the energy budget (fix ave/time, read by
 # io.read_ave_time): the breaking heat of the normal and of the shear springs
 # (compute lattice/energy), the bonds broken in tension and in shear, the kinetic
@@ -112,6 +117,7 @@ class DeckSpec:
     # layers' axial motion prescribed, as in tension: for stepped ends that platens would
     # touch at a few particles only, e.g. a rotated 2D lattice)
     ends: str = "platens"
+    elastic_load: str = "compression"  # elastic test: one of ELASTIC_LOADS
 
     def __post_init__(self) -> None:
         if self.test not in TESTS:
@@ -129,6 +135,12 @@ class DeckSpec:
         if self.ends == "layers" and self.test == "periodic":
             raise ValueError("ends = 'layers': the periodic test has no ends (use 'platens', "
                              "which it ignores)")
+        if self.elastic_load not in ELASTIC_LOADS:
+            raise ValueError(f"elastic_load = {self.elastic_load!r} is not known: use one of "
+                             f"{', '.join(ELASTIC_LOADS)}")
+        if self.elastic_load != "compression" and self.test != "elastic":
+            raise ValueError(f"elastic_load = {self.elastic_load!r} is for the elastic test "
+                             f"only (test = {self.test!r})")
         if self.schedule not in SCHEDULES:
             raise ValueError(f"schedule = {self.schedule!r} is not known: use one of "
                              f"{', '.join(SCHEDULES)}")
@@ -178,6 +190,13 @@ class DeckSpec:
         return "y" if self.dim == 2 else "z"
 
     @property
+    def pulls(self) -> bool:
+        """Whether the end layers are pulled apart (the tension test, the elastic test in
+        tension) rather than pressed by platens."""
+        return self.test == "tension" or (self.test == "elastic"
+                                          and self.elastic_load == "tension")
+
+    @property
     def lateral_axes(self) -> tuple[str, ...]:
         """The axes across the load: x in 2D, x and y in 3D."""
         return ("x",) if self.dim == 2 else ("x", "y")
@@ -205,11 +224,12 @@ def _header(spec: DeckSpec) -> str:
     title = {
         "tension": "Uniaxial tension between two smooth planes holding the end layers",
         "compression": "Uniaxial compression between two smooth platens (fix lattice/wall, mu 0)",
-        "elastic": "Elastic test: small compression with unbreakable bonds (Xb, Fs0 x 100)",
+        "elastic": f"Elastic test: small {spec.elastic_load} with unbreakable bonds "
+                   "(Xb, Fs0 x 100)",
         "confined": f"Confined compression: platens plus side walls holding {spec.confining:g} Pa",
         "periodic": "Uniaxial tension of a periodic cell: no platens, no free surfaces",
     }[spec.test]
-    if spec.ends == "layers" and spec.test != "tension":
+    if spec.ends == "layers" and not spec.pulls:
         held = "smooth planes holding the end layers (stepped ends)"
         title = {"compression": f"Uniaxial compression between two {held}",
                  "elastic": f"Elastic test: small compression between two {held}, unbreakable "
@@ -311,7 +331,7 @@ def _end_layers(spec: DeckSpec) -> str:
     stepped end) are held by smooth planes: their axial motion is prescribed (apart in
     tension, together otherwise), sideways they move freely with the block."""
     ax, d = spec.axis, spec.d
-    sign = 1.0 if spec.test == "tension" else -1.0
+    sign = 1.0 if spec.pulls else -1.0
     way = "apart" if sign > 0 else "together"
     if spec.schedule == "constant":
         title = f"end layers moving {way} at {spec.speed:g} m/s"
@@ -364,7 +384,7 @@ fix             free all press/berendsen {free} couple none modulus {spec.modulu
 compute         pvir all pressure NULL virial
 variable        stress equal -c_pvir[{k}]
 """
-    if spec.test == "tension":
+    if spec.pulls:
         return _end_layers(spec)
     wall_kn = spec.wall_kn if spec.wall_kn is not None else 2.0 * spec.bond.Kn
     r = 0.5 * d
@@ -433,7 +453,7 @@ fix             stop all halt {spec.thermo_every} v_failed > 0.5 error continue
     if spec.energy:
         # after the fixes that add forces, as compute lattice/energy requires; the
         # end layers' prescribed motion does external work in tension
-        layers = spec.test == "tension" or spec.ends == "layers"
+        layers = spec.pulls or spec.ends == "layers"
         energy, columns = energy_budget("top bottom" if layers else "")
     table = thermo(f"step time v_strain v_lateral v_gauge v_stress {BOND_COUNTS} ke{columns}",
                    spec.thermo_every, flush=True)

@@ -24,7 +24,7 @@ from .conversion import (
     paper_damping_3d,
     rock_to_bond,
 )
-from .decks import BREAKING_COLUMNS, BREAKING_LOG, ENDS, DeckSpec, write_deck
+from .decks import BREAKING_COLUMNS, BREAKING_LOG, ELASTIC_LOADS, ENDS, DeckSpec, write_deck
 from .grains import GrainPairOptions
 from .io.ave_time import read_ave_time
 from .lattice import (Lattice, close_packed_block_3d, hex_block_2d, turned_block_3d,
@@ -56,6 +56,7 @@ class RunPlan:
     thermo_every: int = 1
     strain_rate: float = 0.0     # periodic test: axial strain rate of the box (1/s)
     modulus: float = 0.0         # periodic test: stiffness estimate for its barostat (Pa)
+    elastic_load: str = "compression"  # elastic test: one of ELASTIC_LOADS
 
 
 def build_lattice(dim: int, n: int, d: float, orientation: float = 0.0) -> Lattice:
@@ -122,7 +123,8 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
               confining: float = 0.0, schedule: str = "constant",
               damping: float | None = None, elastic_strain: float = 1.0e-4,
               step_size: float | None = None, relax_steps: int | None = None,
-              dt_scale: float = 1.0) -> RunPlan:
+              dt_scale: float = 1.0, elastic_load: str = "compression",
+              thermo_every: int | None = None) -> RunPlan:
     """Choose time step, damping, loading and run length.
 
     - eta: ``damping`` times the papers' damping (2D sqrt(8 m Kn)/N,
@@ -137,6 +139,13 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
       step (scaled with d / 1 mm) and relaxation steps after each
       (PAPER_SCHEDULES), unless ``step_size`` or ``relax_steps`` are given;
     - dt_scale: multiplies the time step of either schedule (convergence studies);
+    - elastic_load (elastic test only): ``compression`` between the platens or ``tension``,
+      the end layers pulled apart as in the tension test (ELASTIC_LOADS); the strain
+      magnitude is ``elastic_strain`` either way;
+    - thermo_every: time steps between thermo rows, instead of about THERMO_LINES rows per
+      run (THERMO_LINES_STEPWISE loading steps' ends with the stepwise schedule); a
+      stepwise run prints at the end of relaxation periods, so it is rounded up to a
+      multiple of the relaxation steps;
     - steps: RUN_MARGIN times the time to reach the failure strain Cu/E or Tu/E
       (or ``elastic_strain``), counting the platens' spring overlap; strength
       decks stop by themselves once the block has failed (fix halt), and a
@@ -154,6 +163,15 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
     if not 0 < elastic_strain < 0.01:
         raise ValueError(f"elastic_strain = {elastic_strain} is out of range: need "
                          "0 < elastic_strain < 0.01 (small strain)")
+    if elastic_load not in ELASTIC_LOADS:
+        raise ValueError(f"elastic_load = {elastic_load!r} is not known: use one of "
+                         f"{', '.join(ELASTIC_LOADS)}")
+    if elastic_load != "compression" and test != "elastic":
+        raise ValueError(f"elastic_load = {elastic_load!r} is for the elastic test only "
+                         f"(test = {test!r})")
+    if thermo_every is not None and thermo_every < 1:
+        raise ValueError(f"thermo_every = {thermo_every} is out of range: need "
+                         "thermo_every >= 1 (time steps)")
     dim, d = lattice.dim, lattice.d
     mass = lattice_mass(rock.rho, d, dim)
     n_across = lattice_n_across(lattice)
@@ -193,10 +211,12 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
         steps = loading_steps * relax_steps
         speed = step_size / (relax_steps * dt)     # the mean platen speed
         # thermo at the end of relaxation periods only
-        thermo_every = relax_steps * max(1, loading_steps // THERMO_LINES_STEPWISE)
+        every = (relax_steps * max(1, loading_steps // THERMO_LINES_STEPWISE)
+                 if thermo_every is None else relax_steps * -(-thermo_every // relax_steps))
         return RunPlan(n=n_across, particles=lattice.n, d=d, mass=mass, dt=dt, eta=eta,
                        speed=speed, steps=steps, area=area, schedule="stepwise",
-                       step_size=step_size, relax_steps=relax_steps, thermo_every=thermo_every)
+                       step_size=step_size, relax_steps=relax_steps, thermo_every=every,
+                       elastic_load=elastic_load)
     dt = dt_scale * DEFAULT_DT_FRACTION * math.sqrt(mass / bond.Kn)
     wave_speed = math.sqrt(rock.E / rock.rho)
     load_time = crossings * height / wave_speed
@@ -207,7 +227,8 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
     steps = int(math.ceil(margin * load_time / dt))
     return RunPlan(n=n_across, particles=lattice.n, d=d, mass=mass, dt=dt,
                    eta=eta, speed=speed, steps=steps, area=area,
-                   thermo_every=max(1, steps // THERMO_LINES))
+                   thermo_every=max(1, steps // THERMO_LINES) if thermo_every is None
+                   else thermo_every, elastic_load=elastic_load)
 
 
 def end_particles(lattice: Lattice) -> int:
@@ -270,7 +291,7 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
               energy: bool = False, shear_frame: str = "fixed",
               grains: GrainPairOptions | None = None,
               atom_style: str = "atomic", ends: str = "platens",
-              wall_kn: float | None = None) -> DeckSpec:
+              wall_kn: float | None = None, halt_fraction: float | None = None) -> DeckSpec:
     """The deck of a planned run (reads ``data.lattice`` beside it).
 
     grains: the pair style's grain keywords of a heterogeneous block, whose
@@ -278,7 +299,10 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
     atom_style: that of the data file (:func:`bonded_lattice.lattice.write_data`).
     ends: ``platens`` or ``layers`` (:func:`choose_ends`).
     wall_kn: the platens' spring stiffness (N/m; default 2 Kn).
+    halt_fraction: a strength test stops once |stress| falls below this fraction of its
+    peak (0: never; None: DeckSpec's default).
     """
+    halt = {} if halt_fraction is None else {"halt_fraction": halt_fraction}
     return DeckSpec(gauges=gauges, energy=energy, shear_frame=shear_frame, grains=grains,
                     atom_style=atom_style, ends=ends, wall_kn=wall_kn,
                     test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
@@ -286,7 +310,8 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
                     dt=plan.dt, thermo_every=plan.thermo_every, confining=confining,
                     schedule=plan.schedule, step_size=plan.step_size,
                     relax_steps=plan.relax_steps, dump_every=dump_every,
-                    strain_rate=plan.strain_rate, modulus=plan.modulus)
+                    strain_rate=plan.strain_rate, modulus=plan.modulus,
+                    elastic_load=plan.elastic_load, **halt)
 
 
 def lattice_n_across(lattice: Lattice) -> int:
@@ -311,6 +336,7 @@ class RockTest(Study):
                  dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
                  shear_frame: str = "fixed", atom_style: str = "atomic",
                  pictures: bool = True, ends: str = "auto", platen_stiffness: float = 2.0,
+                 halt_fraction: float | None = None,
                  **plan_options) -> None:
         super().__init__(out, np_=np_, progress=progress, pictures=pictures)
         if not (math.isfinite(platen_stiffness) and 0 < platen_stiffness <= MAX_PLATEN_STIFFNESS):
@@ -327,6 +353,7 @@ class RockTest(Study):
         self.atom_style = atom_style
         self.ends_choice = check_ends(ends)
         self.plan_options = plan_options
+        self.halt_fraction = halt_fraction
         self.confining = plan_options.get("confining", 0.0)
         # the periodic test is a tension test without platens
         self.kind = "tension" if test == "periodic" else test
@@ -351,7 +378,8 @@ class RockTest(Study):
         self.spec = deck_spec(plan, self.test, self.dim, self.bond, self.confining,
                               self.dump_every, has_mid_height(self.lattice), self.energy,
                               self.shear_frame, atom_style=self.atom_style, ends=self.ends,
-                              wall_kn=self.platen_stiffness * self.bond.Kn)
+                              wall_kn=self.platen_stiffness * self.bond.Kn,
+                              halt_fraction=self.halt_fraction)
         write_deck(self.spec, deck)
         return deck
 
@@ -387,8 +415,10 @@ class RockTest(Study):
     def _plot(self) -> None:
         out, thermo, name = self.out, self.thermo, self.strength_name
         title = f"{self.rock.name}, {self.dim}D, {self.test}, {self.lattice.n} particles"
+        # an elastic test that pulls its block plots as a tension test
+        kind = "tension" if self.plan.elastic_load == "tension" else self.kind
         stress_strain_png(out / "stress_strain.png", thermo["v_strain"], thermo["v_stress"],
-                          self.kind, self.rock.E, self.target.get(name) if name else None, title)
+                          kind, self.rock.E, self.target.get(name) if name else None, title)
         if self.energy:
             energy_png(out / "energy.png", thermo, title)
         if name:
@@ -407,7 +437,8 @@ class RockTest(Study):
             "n": self.n,
             "confining_Pa": self.confining,
             "orientation_deg": self.orientation,
-            "ends": {"tension": "layers", "periodic": None}.get(self.test, self.ends),
+            "ends": (None if self.test == "periodic" else
+                     "layers" if self.spec.pulls else self.ends),
             "platen_stiffness": self.platen_stiffness,
             "ranks": self.np_,
             "plan": asdict(plan),
@@ -430,7 +461,8 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
              d: float = 1.0e-3, progress: bool = True, bond: BondParameters | None = None,
              dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
              shear_frame: str = "fixed", atom_style: str = "atomic", ends: str = "auto",
-             platen_stiffness: float = 2.0, **plan_options) -> dict:
+             platen_stiffness: float = 2.0, halt_fraction: float | None = None,
+             **plan_options) -> dict:
     """Run one test end to end (:class:`RockTest`) and return the summary (also written to
     summary.json).
 
@@ -445,13 +477,18 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
     bond: bond parameters to use instead of the rock's converted ones (calibration);
         the targets stay the rock's properties.
     platen_stiffness: the platens' springs as a multiple of Kn (0 < value <= 20).
+    halt_fraction: a strength test stops once |stress| falls below this fraction of its
+        peak (0: runs its planned steps; None: the decks' default,
+        :class:`bonded_lattice.decks.DeckSpec`).
     plan_options: passed to :func:`plan_test` (crossings, speed, confining,
-        schedule, damping, elastic_strain, step_size, relax_steps).
+        schedule, damping, elastic_strain, elastic_load, step_size, relax_steps,
+        thermo_every).
     """
     return RockTest(rock, dim, test, n, out, np_=np_, d=d, progress=progress, bond=bond,
                     dump_every=dump_every, orientation=orientation, energy=energy,
                     shear_frame=shear_frame, atom_style=atom_style, ends=ends,
-                    platen_stiffness=platen_stiffness, **plan_options).run()
+                    platen_stiffness=platen_stiffness, halt_fraction=halt_fraction,
+                    **plan_options).run()
 
 
 ENERGY_NAMES = ("elastic", "kinetic", "gravitational", "viscous_heat", "breaking_heat_normal",

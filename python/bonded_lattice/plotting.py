@@ -152,22 +152,6 @@ def convergence_png(path: str | Path, dim: int, series: list[dict],
     save_png(fig, path, dpi=120)
 
 
-def strain_magnitude_png(path: str | Path, results: dict[int, list[dict]],
-                         strains: list[float]) -> None:
-    """Errors of E and nu against the strain magnitude of the elastic test, 2D and 3D."""
-    plt = _pyplot()
-    fig, axes = plt.subplots(1, 2, figsize=(8.5, 3.6))
-    for ax, key in zip(axes, ("E", "nu")):
-        for dim, runs in sorted(results.items()):
-            err = [100 * r["relative_error"][key] for r in runs]
-            ax.semilogx(strains, err, "o-", label=f"{dim}D, {runs[0]['particles']} particles")
-        ax.axhline(0.0, color="k", lw=0.8)
-        ax.set_xlabel("compressive strain magnitude")
-        ax.set_ylabel(f"{key} error (%)")
-        ax.legend(fontsize=8)
-    save_png(fig, path, dpi=120)
-
-
 def energy_png(path: str | Path, thermo: dict, title: str = "") -> None:
     """Energy and heat curves of a run with compute lattice/energy (Liu 2017, Fig. 6).
 

@@ -43,7 +43,34 @@ def elastic_constants_2d(sig_yy: float, eps_xx: float, eps_yy: float) -> tuple[f
 
 def finite_strain_unit(dim: int, p: dict[str, float], d: float, sign: int,
                        eps_max: float, nstep: int = 2000) -> dict[str, float]:
-    """Quasi-static response of the unit to the apex moved by sign * eps * l_AO, exact geometry.
+    """The failure of the unit on its exact quasi-static path (:func:`unit_path`): the
+    failure stress of the inclined bonds, its strain, the mode, and (when base bonds open
+    first) C_open, each located by linear interpolation between load steps."""
+    out: dict[str, float] = {}
+    prev = {"eps": 0.0, "sig": 0.0, "open": -1.0, "tension": -1.0, "shear": -1.0}
+
+    def interpolate(a: dict, b: dict, key: str) -> tuple[float, float]:
+        t = (0.0 - a[key]) / (b[key] - a[key])
+        return a["sig"] + t * (b["sig"] - a["sig"]), a["eps"] + t * (b["eps"] - a["eps"])
+
+    for cur in unit_path(dim, p, d, sign, eps_max, nstep):
+        if "opened" in cur:          # the base bonds opened during this step
+            sig_open, out["eps_open"] = interpolate(prev, cur["opened"], "open")
+            out["C_open"] = -sig_open    # a magnitude, as eq. 22 / eq. 8
+        for mode in ("tension", "shear"):
+            if cur[mode] > 0.0:
+                sig_fail, out["eps_peak"] = interpolate(prev, cur, mode)
+                out["peak"] = sign * sig_fail    # a magnitude, as Tu and Cu
+                out["mode"] = mode
+                return out
+        prev = cur
+    raise AssertionError(f"finite_strain_unit: no failure up to strain {sign * eps_max}")
+
+
+def unit_path(dim: int, p: dict[str, float], d: float, sign: int, eps_max: float,
+              nstep: int = 2000):
+    """Quasi-static response of the unit to the apex moved by sign * eps * l_AO, exact geometry:
+    yields the state at eps = sign * eps_max * k / nstep, k = 1..nstep.
 
     By symmetry the apex stays on the axis and each base particle moves radially (in 3D the
     vertical plane through the axis and a base element is a mirror plane).  In that plane an
@@ -55,8 +82,13 @@ def finite_strain_unit(dim: int, p: dict[str, float], d: float, sign: int,
         Fn cos(theta) - Ks s sin(theta) + c Fn2 = 0,
     c = 1 (2D), sqrt3 (3D: two base bonds at 30 deg to the radius),
     and the apex force is nbase * (Fn sin(theta) + Ks s cos(theta)).
-    Returns the failure stress of the inclined bonds, its strain, the mode, and (when base bonds
-    open first) C_open, each located by linear interpolation between load steps.
+    Each state: eps, sig (the unit stress, tension positive), lat (the lateral strain
+    X_n2 / l_BC of the base bond), rho, r, theta, s, and the margins to the events, > 0 once
+    they happened: open (a base bond past Xb in tension), tension (an inclined bond past Xb),
+    shear (an inclined bond's shear spring past its Coulomb limit); a state in whose step the
+    base bonds opened also holds, under "opened", the state just before they let go.  Bonds
+    never break here: the caller decides what an event means (the path goes on with the base
+    bonds open once they opened).
     """
     g = unit_geometry(dim, d)
     rho0, h0, nbase = g["rho0"], g["h0"], g["nbase"]
@@ -66,8 +98,6 @@ def finite_strain_unit(dim: int, p: dict[str, float], d: float, sign: int,
 
     rho, s, theta, r = rho0, 0.0, math.atan2(h0, rho0), d
     base_intact = True
-    prev = {"eps": 0.0, "sig": 0.0, "open": -1.0, "tension": -1.0, "shear": -1.0}
-    out: dict[str, float] = {}
 
     def solve(height: float, intact: bool) -> dict[str, float]:
         def state(rr_base: float):
@@ -100,28 +130,17 @@ def finite_strain_unit(dim: int, p: dict[str, float], d: float, sign: int,
         m_open = (rr - d) / xb - 1.0
         m_slide = ks * abs(ss) / (fs0 - mu_p * fn) - 1.0 if fs0 - mu_p * fn > 0.0 else 1.0
         return {"rho": rb, "r": rr, "theta": th, "s": ss, "sig": unit_stress(dim, force, d),
-                "open": xn2 / xb - 1.0, "tension": m_open, "shear": m_slide}
-
-    def interpolate(a: dict, b: dict, key: str) -> tuple[float, float]:
-        t = (0.0 - a[key]) / (b[key] - a[key])
-        return a["sig"] + t * (b["sig"] - a["sig"]), a["eps"] + t * (b["eps"] - a["eps"])
+                "lat": xn2 / d, "open": xn2 / xb - 1.0, "tension": m_open, "shear": m_slide}
 
     for k in range(1, nstep + 1):
         eps = sign * eps_max * k / nstep
         cur = solve(h0 * (1.0 + eps), base_intact)
         cur["eps"] = eps
         if base_intact and cur["open"] > 0.0:
-            sig_open, out["eps_open"] = interpolate(prev, cur, "open")
-            out["C_open"] = -sig_open    # a magnitude, as eq. 22 / eq. 8
+            before = cur
             base_intact = False
             cur = solve(h0 * (1.0 + eps), base_intact)
             cur["eps"] = eps
-        for mode in ("tension", "shear"):
-            if cur[mode] > 0.0:
-                sig_fail, out["eps_peak"] = interpolate(prev, cur, mode)
-                out["peak"] = sign * sig_fail    # a magnitude, as Tu and Cu
-                out["mode"] = mode
-                return out
+            cur["opened"] = before
         rho, s, theta, r = cur["rho"], cur["s"], cur["theta"], cur["r"]
-        prev = cur
-    raise AssertionError(f"finite_strain_unit: no failure up to strain {sign * eps_max}")
+        yield cur

@@ -182,3 +182,20 @@ def test_dim_must_match_dump(tmp_path, x2d):
     write_dump(tmp_path / "d", loading_frames(x2d, (0.16e-4, -1e-4, 0.0)))
     with pytest.raises(ValueError, match="dim = 3"):
         dumps.strains_from_dump(tmp_path / "d", 3)
+
+
+def test_read_atom_frame_picks_one_frame_sorted_by_id(tmp_path, x2d):
+    """read_atom_frame returns exactly the rows of the asked frame (ids written reversed, read
+    back in order) and names the file when the frame is missing."""
+    from bonded_lattice.io import read_atom_frame
+
+    ids = np.arange(len(x2d), 0, -1)
+    frames = [(step, ids, x2d + 1e-6 * k) for k, step in enumerate(STEPS)]
+    write_dump(tmp_path / "t.lammpstrj", frames)
+    names, rows = read_atom_frame(tmp_path / "t.lammpstrj", STEPS[3])
+    assert names == ["id", "type", "x", "y", "z", "c_nbonds"]
+    assert rows[:, 0].tolist() == list(range(1, len(x2d) + 1))
+    # row of id i is the position written for id i: x2d[len - i] shifted by frame 3's 3e-6
+    np.testing.assert_allclose(rows[:, 2:5], (x2d + 3e-6)[::-1], rtol=REL, atol=0)
+    with pytest.raises(ValueError, match="t.lammpstrj: no frame at time step 7"):
+        read_atom_frame(tmp_path / "t.lammpstrj", 7)

@@ -51,6 +51,31 @@ def read_atom_dump(path: str | Path) -> tuple[list[str], np.ndarray]:
     return names, rows
 
 
+def read_atom_frame(path: str | Path, step: int) -> tuple[list[str], np.ndarray]:
+    """Column names and rows, sorted by ``id``, of the frame at time step ``step`` of a text
+    atom trajectory (``dump custom``), read line by line without the other frames' rows; a
+    ValueError names the file if it has no such frame."""
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"{path}: LAMMPS dump is missing")
+    with path.open() as lines:
+        for line in lines:
+            if not line.startswith("ITEM: TIMESTEP") or int(next(lines)) != step:
+                continue
+            count = 0
+            for line in lines:
+                if line.startswith("ITEM: NUMBER OF ATOMS"):
+                    count = int(next(lines))
+                elif line.startswith("ITEM: ATOMS"):
+                    names = line.split()[2:]
+                    rows = np.array([next(lines).split() for _ in range(count)], dtype=float)
+                    rows = rows.reshape(-1, len(names))
+                    if "id" in names:
+                        rows = rows[np.argsort(rows[:, names.index("id")], kind="stable")]
+                    return names, rows
+    raise ValueError(f"{path}: no frame at time step {step}")
+
+
 def read_local_dump(path: str | Path) -> tuple[list[str], np.ndarray]:
     """Column names and rows of a one-frame ``dump local`` (for example of ``compute
     lattice/bond/local``: one row per bond), in the order LAMMPS wrote them."""

@@ -1,22 +1,19 @@
-"""Sections on blocks of the papers' sizes: the single units, the series of sizes, and the
-elastic constants against the strain magnitude (Liu 2013 Figs. 2, 6, 8; Liu 2017 Figs. 2b,
-4)."""
+"""Sections on blocks of the papers' sizes: the single units and the series of sizes (Liu 2013
+Figs. 2, 8; Liu 2017 Figs. 2b, 4)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..plotting import convergence_png, strain_magnitude_png
+from ..plotting import convergence_png
 from .doc import DocContext, paper_pct, pct
 from .papers import paper_value
 from .geometry import section_factor
 from .runner import Validation, rock_for
 from .section import Section
 
-__all__ = ["SERIES", "STRAIN", "UNITS"]
+__all__ = ["SERIES", "UNITS"]
 
-STRAINS = [1e-6, 1e-5, 1e-4, 1e-3]
-STRAIN_SIZE = {2: 30, 3: 10}
 
 
 def run_units(v: Validation) -> dict:
@@ -161,35 +158,5 @@ def _free_face_fit(dim: str, rows: list[dict]) -> str:
             f"the multi-unit sizes; largest deviation from it {pct(resid)}).")
 
 
-def run_strain(v: Validation) -> dict:
-    data = {}
-    for dim in (2, 3):
-        rock = rock_for(dim)
-        data[str(dim)] = {"n": STRAIN_SIZE[dim], "strains": STRAINS, "runs": [
-            v.run(f"{dim}d/strain_{s:g}", rock, dim, "elastic", STRAIN_SIZE[dim],
-                  elastic_strain=s) for s in STRAINS]}
-    return data
-
-
-def doc_strain(data: dict, ctx: DocContext) -> list[str]:
-    L = ["## E and nu against strain magnitude", "",
-         "| strain | 2D E | 2D nu | 3D E | 3D nu |", "|---|---|---|---|---|"]
-    strains = data["2"]["strains"]
-    for k, s in enumerate(strains):
-        cells = []
-        for dim in ("2", "3"):
-            r = data[dim]["runs"][k]
-            cells += [pct(r["relative_error"]["E"], 3), pct(r["relative_error"]["nu"], 3)]
-        L.append(f"| -{s:g} | " + " | ".join(cells) + " |")
-    L += ["", f"Blocks: 2D N = {data['2']['n']}, 3D n_y = {data['3']['n']}.  The paper's "
-          f"single unit at -1e-3: E {paper_pct('2d.unit.E_1e-3', 3)}, nu "
-          f"{paper_pct('2d.unit.nu_1e-3', 3)} (Liu 2013, para. 47)."]
-    strain_magnitude_png(ctx.img / "strain_magnitude.png",
-                         {int(d): data[d]["runs"] for d in ("2", "3")}, strains)
-    L += ["", "![E and nu against strain](img/strain_magnitude.png)"]
-    return L
-
-
 UNITS = Section("units", run_units, doc_units)
 SERIES = Section("series", run_series, doc_series)
-STRAIN = Section("strain", run_strain, doc_strain)

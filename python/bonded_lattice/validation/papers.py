@@ -41,7 +41,17 @@ PAPER: dict[str, PaperValue] = {
         90.0, "Liu 2013, para. 55: the formulas are validated with the load vertical, at 90 "
               "degrees to the close-packed rows (by the unit's symmetry also at 30 and 150); "
               "E and Tu 'a bit lower along other directions'"),
+    "2d.elastic.strain_constant": PaperValue(
+        1e-3, "Liu 2013, para. 46: the elastic properties almost keep constant values while the "
+              "strain magnitude is below 1e-3, and change significantly beyond it"),
+    "2d.n30.particles": PaperValue(1033, "Liu 2013, Fig. 7 caption: the compressed lattice of "
+                                         "1033 particles, 30 across"),
     # 2017, 3D
+    "3d.elastic.strain_growth": PaperValue(
+        1e-3, "Liu 2017, section 5.2 (Fig. 4a): the error of Young's modulus is greater when "
+              "the strain exceeds 1e-3"),
+    "3d.n12.elements": PaperValue(2166, "Liu 2017, Fig. 5 caption: compressive strength test "
+                                        "of a cubic model with 2166 elements"),
     "3d.unit.Tu": PaperValue(-0.00011, "Liu 2017, section 5.2: one unit 0.011% below"),
     "3d.unit.Cu": PaperValue(-0.0173, "Liu 2017, section 5.2: one unit 1.73% below"),
     "3d.multi.Tu": PaperValue(-0.0889, "Liu 2017, section 5.2: mean of the multi-unit "

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 from .anisotropy import ANISOTROPY
-from .blocks import SERIES, STRAIN, UNITS
+from .blocks import SERIES, UNITS
+from .compression_curve import COMPRESSION_CURVE, COMPRESSION_CURVE_3D
+from .elastic_strain import ELASTIC_STRAIN
 from .energy import ENERGY
 from .friction import CALIBRATION, ENVELOPE
 from .ladder import LADDER
@@ -14,8 +16,9 @@ from .section import Section
 
 __all__ = ["SECTIONS", "section_names"]
 
-SECTIONS: list[Section] = [UNITS, SERIES, LADDER, LOADING_3D, FAILURE_MAP, STRAIN, SCHEDULE,
-                           ENERGY, ENVELOPE, CALIBRATION, ANISOTROPY]
+SECTIONS: list[Section] = [UNITS, SERIES, LADDER, LOADING_3D, FAILURE_MAP, COMPRESSION_CURVE,
+                           COMPRESSION_CURVE_3D, ELASTIC_STRAIN, SCHEDULE, ENERGY, ENVELOPE,
+                           CALIBRATION, ANISOTROPY]
 
 
 def section_names() -> list[str]:
