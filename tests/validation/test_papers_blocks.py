@@ -16,6 +16,10 @@ from bonded_lattice.experiment import run_test
 from bonded_lattice.rocks import get_rock
 
 SIZES = {2: [4, 8, 15], 3: [4, 6]}
+# 3D compression at 1000 wave crossings to failure: at the default 100 the platens' viscous
+# drag still reads Cu 3-5 points high on these blocks (docs/validation.md, "3D compression:
+# how slow constant loading must be")
+SLOW_3D = {"crossings": 1000.0}
 
 
 @pytest.fixture(scope="module")
@@ -28,6 +32,8 @@ def blocks(tmp_path_factory) -> dict:
         for n in sizes:
             for test in ("elastic", "tension", "compression"):
                 options = {"elastic_strain": 1e-6} if test == "elastic" else {}
+                if dim == 3 and test == "compression":
+                    options = SLOW_3D
                 runs[dim, n, test] = run_test(rock, dim, test, n, out / f"{dim}d_{n}_{test}",
                                               np_=1, progress=False, **options)
     return runs

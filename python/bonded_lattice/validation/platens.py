@@ -1,0 +1,93 @@
+"""What the platens do to a block's compressive strength: Cu against the stiffness of the
+platens' springs, and with no platens at all (the end layers held and moved, as in tension).
+
+A block of many units is weaker than its unit in compression (Liu 2013 para. 51, Liu 2017
+section 5.2: "boundary effects").  The papers' platens are smooth planes whose contact
+stiffness they do not state; ours are springs of 2 Kn (:class:`~bonded_lattice.decks.DeckSpec`
+``wall_kn``).  This sweep measures how much of the deficit the platens' stiffness decides.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..plotting import pyplot, save_png
+from .doc import DocContext, paper_pct, pct
+from .papers import paper_value
+from .runner import Validation, rock_for
+from .section import Section
+
+__all__ = ["PLATENS", "STIFFNESSES"]
+
+STIFFNESSES = [1.0, 2.0, 5.0, 10.0]       # multiples of Kn
+SIZES = {2: [8, 15, 30], 3: [6, 12]}
+# constant loading slow enough to be converged in Cu within a few tenths of a point
+# (2D: the series' 100 crossings; 3D: section loading_3d shows 100 crossings read Cu high)
+CROSSINGS = {2: 100.0, 3: 1000.0}
+
+
+def run_platens(v: Validation) -> dict:
+    data = {}
+    for dim in (2, 3):
+        rock, rows = rock_for(dim), []
+        for n in SIZES[dim]:
+            runs = {f"{k:g}": v.run(f"{dim}d/platens_n{n}_k{k:g}_c{CROSSINGS[dim]:g}", rock, dim,
+                                    "compression", n, crossings=CROSSINGS[dim],
+                                    platen_stiffness=k)
+                    for k in STIFFNESSES}
+            runs["layers"] = v.run(f"{dim}d/platens_n{n}_layers_c{CROSSINGS[dim]:g}", rock, dim,
+                                   "compression", n, crossings=CROSSINGS[dim], ends="layers")
+            rows.append({"n": n, "runs": runs})
+        data[str(dim)] = {"crossings": CROSSINGS[dim], "rows": rows}
+    return data
+
+
+def doc_platens(data: dict, ctx: DocContext) -> list[str]:
+    keys = [f"{k:g}" for k in STIFFNESSES] + ["layers"]
+    head = ("| dim | size | particles | " + " | ".join(f"platens {k} Kn" for k in keys[:-1])
+            + " | end layers held |")
+    L = ["## The platens decide the compressive deficit", "",
+         "Cu errors of blocks compressed by smooth platens whose springs have 1 to 10 times the "
+         "bonds' stiffness Kn (ours: 2 Kn), and by the end layers held and moved as in tension "
+         "(no platens); constant loading at the papers' damping (2D "
+         f"{data['2']['crossings']:g}, 3D {data['3']['crossings']:g} wave crossings to failure).",
+         "", head, "|" + "---|" * (head.count("|") - 1)]
+    for dim in ("2", "3"):
+        for row in data[dim]["rows"]:
+            r = row["runs"]
+            L.append(f"| {dim}D | {'N' if dim == '2' else 'n_y'} = {row['n']} | "
+                     f"{r['layers']['particles']} | "
+                     + " | ".join(pct(r[k]["relative_error"]["Cu"]) for k in keys) + " |")
+    for dim in ("2", "3"):
+        rows = data[dim]["rows"]
+        at = {k: float(np.mean([r["runs"][k]["relative_error"]["Cu"] for r in rows]))
+              for k in keys}
+        L += ["", f"{dim}D, mean over these sizes: platens of Kn {pct(at['1'])}, of 2 Kn "
+              f"{pct(at['2'])}, held end layers {pct(at['layers'])}; the paper's multi-unit "
+              f"mean {paper_pct(f'{dim}d.multi.Cu')}."]
+    _png(ctx, data, keys)
+    L += ["", "![Cu against the platens' stiffness](img/platens.png)"]
+    return L
+
+
+def _png(ctx: DocContext, data: dict, keys: list[str]) -> None:
+    plt = pyplot()
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.6))
+    for ax, dim in zip(axes, ("2", "3")):
+        for row in data[dim]["rows"]:
+            r = row["runs"]
+            line, = ax.semilogx(STIFFNESSES, [100 * r[k]["relative_error"]["Cu"]
+                                              for k in keys[:-1]], "o-",
+                                label=f"{r['layers']['particles']} particles")
+            ax.axhline(100 * r["layers"]["relative_error"]["Cu"], color=line.get_color(),
+                       ls=":", lw=1)
+        ax.axhline(100 * paper_value(f"{dim}d.multi.Cu"), color="r", ls="--", lw=1,
+                   label="paper, multi-unit mean")
+        ax.set_xlabel("platen spring stiffness / Kn (dotted: end layers held)")
+        ax.set_ylabel("Cu error (%)")
+        ax.set_title(f"{dim}D", fontsize=10)
+        ax.legend(fontsize=7)
+    save_png(fig, ctx.img / "platens.png", dpi=110)
+
+
+PLATENS = Section("platens", run_platens, doc_platens)
