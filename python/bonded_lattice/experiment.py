@@ -206,6 +206,13 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
                    thermo_every=max(1, steps // THERMO_LINES))
 
 
+# energy decks run this long (s) after the failure halt's condition is first met: the
+# kinetic energy of the 2166-element tension block peaks about 2 us after its stress has
+# dropped below 30% of the peak, and the papers' damping takes 2 m/eta (about 1.6 us) to
+# halve it; 20 us shows the peak and its decay into viscous heat (Liu 2017 Fig. 6b, B1 to B2)
+ENERGY_AFTERMATH = 2.0e-5
+
+
 def end_particles(lattice: Lattice) -> int:
     """Particles in the bottom layer: those touching a platen."""
     h = lattice.positions[:, lattice.axis]
@@ -231,6 +238,7 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
     atom_style: that of the data file (:func:`bonded_lattice.lattice.write_data`).
     """
     return DeckSpec(gauges=gauges, energy=energy, shear_frame=shear_frame, grains=grains,
+                    halt_delay=int(math.ceil(ENERGY_AFTERMATH / plan.dt)) if energy else 0,
                     atom_style=atom_style,
                     test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
                     area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps,
