@@ -104,7 +104,7 @@ class DeckSpec:
     relax_steps: int = 0      # stepwise: time steps after each loading step
     gauges: bool = True       # mid-height lateral gauges (False: blocks of 1-2 layers)
     halt_fraction: float = 0.3  # strength tests stop when |stress| < this x peak (0: never)
-    halt_delay: int = 0       # ... this many steps later (>= 0; energy decks: the failure's aftermath)
+    halt_delay: int = 0       # ... this many steps later (energy decks: the failure's aftermath)
     energy: bool = False      # energy budget (compute lattice/energy) in the thermo output
     shear_frame: str = "fixed"  # one of SHEAR_FRAMES (the papers': fixed)
     # heterogeneous model: the data file has a Grains section (lattice.write_data) and the
@@ -151,7 +151,8 @@ class DeckSpec:
             raise ValueError(f"halt_fraction = {self.halt_fraction} is out of range: need "
                              "0 <= halt_fraction < 1")
         if self.halt_delay < 0:
-            raise ValueError(f"halt_delay = {self.halt_delay} is out of range: need halt_delay >= 0")
+            raise ValueError(f"halt_delay = {self.halt_delay} is out of range: need "
+                             "halt_delay >= 0")
         if self.eta < 0:
             raise ValueError(f"eta = {self.eta} is out of range: need eta >= 0")
         if self.confining < 0:

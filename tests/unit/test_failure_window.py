@@ -48,6 +48,8 @@ def test_pauses_up_to_the_quiet_time_do_not_split_a_burst():
     heat[260:] = 10.0
     one = failure_event(log_of(heat), DT)
     assert (one["start_step"], one["end_step"]) == (200, 260)
+    # its start-to-end time is the single pause between its two increases
+    assert one["first_pause_s"] == one["last_pause_s"] == pytest.approx(60 * DT, rel=1e-12)
     two = failure_event(log_of(heat), DT, quiet_s=0.5e-6)
     assert (two["start_step"], two["end_step"]) == (200, 200)
     assert failure_event(log_of(np.zeros(10)), DT) is None

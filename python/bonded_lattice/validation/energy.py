@@ -14,7 +14,7 @@ import json
 import math
 from pathlib import Path
 
-from ..decks import DeckSpec
+from ..decks import BREAKING_WINDOW, DeckSpec
 from ..experiment import ENERGY_AFTERMATH, build_lattice
 from ..io import read_ave_time
 from ..schedules import DEFAULT_DT_FRACTION, PAPER_SCHEDULES
@@ -44,8 +44,9 @@ RUNS = (
 # the runs drawn as Fig. 6 (a/c: compression, b/d: tension)
 FIGURE_RUNS = {"compression": "compression_constant", "tension": "tension_stepwise"}
 # the energies' time after the failure's end kept for the figures (s): the kinetic energy
-# peaks within 2 us of the end and the papers' damping halves it every 1.6 us
-AFTER_S = 6.0e-6
+# peaks before the end of the tension failure and has been damped to under 1% of its
+# peak 5 us later (Fig. 6b's B2)
+AFTER_S = 5.0e-6
 CURVE_COLUMNS = ("Time", "c_energy[1]", "c_energy[2]", "c_energy[4]", "c_energy[5]",
                  "c_energy[6]", "c_energy[7]", "c_energy[8]", "c_energy[10]")
 # the paper computed its energies once per loading step (section 5.3): 100 steps of 1e-8 s
@@ -94,6 +95,8 @@ def measure_run(folder: Path, test: str, summary: dict) -> dict:
         before = {k: v[log["TimeStep"] <= halt] for k, v in log.items()}
         out["ke"]["thermo rows, old halt"] = peak_kinetic_fraction(before, every)
         out["old_halt_step"] = halt
+        # what the run that stopped there measured: its heat had not reached the final value
+        out["event_to_old_halt"] = failure_event(before, dt)
     elastic = log["c_energy[1]"]
     out["ke_over_peak_elastic"] = out["ke"]["every step"]["kinetic_J"] / float(elastic.max())
     out["ke_width_s"] = peak_width(log, "c_energy[2]", dt)
@@ -113,7 +116,9 @@ def run_energy(v: Validation) -> dict:
     data: dict = {"block": {"elements": lattice.n, "d": lattice.d,
                             "span_m": [float(x) for x in span],
                             "eta_box_over_elements": (volume / box) ** (1 / 3)},
+                  "rock_failure_strain": rock_for(3).Tu / rock_for(3).E,
                   "halt_fraction": HALT_FRACTION, "aftermath_s": ENERGY_AFTERMATH,
+                  "window_steps": BREAKING_WINDOW,
                   "runs": {}, "changes": {}, "curves": {}}
     for key, test, options, change in RUNS:
         name = _folder_name(key)
@@ -123,7 +128,7 @@ def run_energy(v: Validation) -> dict:
     for test, key in FIGURE_RUNS.items():
         folder, run = v.folder(_folder_name(key)), data["runs"][key]
         log = read_ave_time(folder / "breaking.dat")
-        data["curves"][test] = {"key": key, "whole": curve(folder, CURVE_COLUMNS, points=300),
+        data["curves"][test] = {"key": key, "whole": curve(folder, CURVE_COLUMNS, points=200),
                                 "window": window_rows(log, run["event"], run["dt"], AFTER_S)}
     return data
 
@@ -148,34 +153,44 @@ def doc_energy(data: dict, ctx: DocContext) -> list[str]:
     L = ["## Energy budget at the resolution of the failure (Liu 2017, section 5.3 and Fig. 6)",
          "",
          f"3D quartzite, {block['elements']} elements ({ENERGY_SIZE} along y; the paper's "
-         f"{p['3d.energy.elements'].value:.0f}), with `compute lattice/energy` "
-         "(`bonded-lattice run --energy`).  The decks log every term of the budget, the "
-         "broken bonds and the stress at every time step of the run's last "
-         f"{paper['window_rows']} steps (a ring buffer, `fix vector ... nmax`, written after the "
-         "run: the failure halt stops the run soon after the failure, so the window holds it "
-         "while the file stays bounded) and go on for a while after the failure (the kinetic "
-         "energy peaks after the stress has dropped).  The thermo rows give the whole run.", "",
-         "### The paper's numbers and ours (the paper's set-up: "
-         f"{_setup(paper)})", "",
+         f"model has {p['3d.energy.elements'].value:.0f}), with `compute lattice/energy` "
+         "(`bonded-lattice run --energy`).  The strength decks log every term of the budget, "
+         "the broken bonds and the stress at every time step of the run's last "
+         f"{data['window_steps']} steps (`breaking.dat`: a ring buffer, `fix vector ... nmax`, "
+         "written after the run; the failure halt ends the run soon after the failure, so the "
+         "window holds it, and the file stays small however long the loading was) and run on "
+         f"for {_us(data['aftermath_s'], 0)} us after the halt's condition (|stress| below "
+         f"{100 * data['halt_fraction']:.0f}% of its peak) is first met, so that the kinetic "
+         "energy's peak and decay are in the log.  The thermo rows give the whole run.", "",
+         f"### The paper's numbers and ours (tension: the paper's set-up, {_setup(paper)})", "",
          "| quantity | the paper | ours | our definition |", "|---|---|---|---|"]
     ev, ke = paper["event"], paper["ke"]
     L.append(f"| peak kinetic energy / total energy, tension | "
              f"{100 * p['3d.energy.tension.peak_kinetic'].value:.1f}% | "
              f"{100 * ke['every step']['fraction']:.1f}% | the largest kinetic energy over the "
-             "external work so far (the total energy, eq. 25: the model starts with none) at "
+             "external work so far (the total energy of eq. 25: the model starts with none) at "
              f"every step; over the final work {100 * ke['every step']['over_final_work']:.1f}% |")
     L.append(f"| bonds break within, start to end (D1 to D2) | "
              f"{_us(p['3d.energy.tension.duration_s'].value)} us | {_us(ev['duration_s'])} us | "
-             "the first step whose breaking heat (normal + shear) exceeds the step before's, "
-             "to the step of the last increase; increases more than "
+             "from the first step whose breaking heat (normal + shear) exceeds the step "
+             "before's to the step of the last increase; increases more than "
              f"{_us(ev['quiet_s'], 0)} us apart (the paper's sampling interval) split "
              "bursts, and the burst with the most heat is the failure |")
-    L.append(f"| the same, 2% to 98% of the burst's heat | | {_us(ev['duration_2_98_s'])} us | |")
+    L.append(f"| the same, 2% to 98% of the burst's heat | | {_us(ev['duration_2_98_s'])} us | "
+             "the earlier page's definition |")
     for label, width in widths:
         L.append(f"| crack speed, {label} width ({1e3 * width:.2f} mm) / start to end | "
                  f"{p['3d.energy.tension.crack_speed'].value:.0f} m/s (width "
                  f"{100 * p['3d.energy.tension.width_m'].value:.1f} cm) | "
                  f"{width / ev['duration_s']:.0f} m/s | |")
+    for test, key in (("tension", "tension_stepwise"), ("compression", "compression_constant")):
+        e = runs[key]["summary"]["energy"]
+        heats = " / ".join(f"{100 * e[h] / e['external_work']:.1f}" for h in HEATS)
+        said = (f"frictional heat {p['3d.energy.tension.frictional_heat'].value:.0f}"
+                if test == "tension" else "")
+        L.append(f"| heat at the end, {test}: viscous / breaking normal / breaking shear / "
+                 f"frictional, % of the work | {said} | {heats} | compute lattice/energy's "
+                 "tallies (elements 4-7) over its work (element 8) |")
     L.append(f"| the tension model breaks in two at | "
              f"{p['3d.energy.tension.failure_time_s'].value:.4g} s | {ev['start_s']:.4g} s | "
              "the failure's start (D1), from the start of loading |")
@@ -186,19 +201,23 @@ def doc_energy(data: dict, ctx: DocContext) -> list[str]:
              f"{cev['duration_s']:.2g} s ({cev['duration_2_98_s']:.2g} s from 2% to 98%) | "
              "start to end of the burst as in tension, under our constant loading "
              f"({_setup(comp)}); {100 * cev['precursor_fraction']:.0f}% of the breaking heat "
-             "came before it (opening cracks, the paper's A1) |")
+             "came before it (the opening cracks of the paper's A1) |")
     L += ["", "### Like for like: from the paper's set-up to ours, one change at a time", "",
-          "| run | change | set-up | KE peak / work: every step | every 1 us | thermo rows "
-          "| start to end (us) | 2-98% (us) | speed, y outer / start to end (m/s) | failure "
-          "start (s) |", "|---|---|---|---|---|---|---|---|---|---|"]
+          "| run | change from the row above | set-up | KE peak / work, every step | every 1 "
+          "us | thermo rows | thermo rows to the old halt | start to end (us) | 2-98% (us) | "
+          "y outer width / start to end (m/s) | failure start (s) |",
+          "|---|---|---|---|---|---|---|---|---|---|---|"]
     for key, run in runs.items():
         if not key.startswith("tension"):
             continue
         e, k = run["event"], run["ke"]
+        old = k.get("thermo rows, old halt")
+        old_text = "" if old is None else f"{100 * old['fraction']:.1f}%"
         L.append(f"| {key} | {data['changes'][key]} | {_setup(run)} | "
                  f"{100 * k['every step']['fraction']:.1f}% | "
                  f"{100 * k['every 1 us']['fraction']:.1f}% | "
                  f"{100 * k['thermo rows']['fraction']:.1f}% (every {run['thermo_every']}) | "
+                 f"{old_text} | "
                  f"{_us(e['duration_s'])} | {_us(e['duration_2_98_s'])} | "
                  f"{widths[2][1] / e['duration_s']:.0f} | {e['start_s']:.4g} |")
     L += _explanation(data, widths)
@@ -211,10 +230,11 @@ def doc_energy(data: dict, ctx: DocContext) -> list[str]:
         marks = ("C1", "C2") if test == "compression" else ("D1", "D2")
         heat_window_png(ctx.img / f"energy_3d_{test}_heat.png", c["window"], run["event"],
                         marks, title)
-    L += ["", "Analogues of Fig. 6: (a) compression and (b) tension, the whole run from the "
-          "thermo rows, the insets at every step of the failure; (c) compression and (d) "
-          "tension, the heat at every step of the failure window, the start and the end "
-          "marked.", "",
+    L += ["", "Analogues of Fig. 6: (a) compression (our constant loading) and (b) tension "
+          "(the paper's set-up), the whole run from the thermo rows, the insets from the "
+          "per-step log (in compression the kinetic energy alone, as in the paper); (c) "
+          "compression and (d) tension, the heat in the failure window, the failure's start "
+          "and end marked.", "",
           "![energy, compression (Fig. 6a)](img/energy_3d_compression.png)",
           "![energy, tension (Fig. 6b)](img/energy_3d_tension.png)",
           "![heat at the failure, compression (Fig. 6c)](img/energy_3d_compression_heat.png)",
@@ -223,61 +243,94 @@ def doc_energy(data: dict, ctx: DocContext) -> list[str]:
 
 
 def _explanation(data: dict, widths: tuple) -> list[str]:
-    """What each change moves, the earlier numbers, and the failure time's two readings."""
-    runs, p = data["runs"], PAPER
-    paper, const = runs["tension_stepwise"], runs["tension_constant"]
-    ke, cke = paper["ke"], const["ke"]
-    L = ["", f"Sampling.  At every step the paper's set-up peaks at "
-         f"{100 * ke['every step']['fraction']:.1f}% (the paper: "
-         f"{100 * p['3d.energy.tension.peak_kinetic'].value:.1f}%); sampled once per loading "
-         f"step ({_us(paper['paper_every'] * paper['dt'], 0)} us, how the paper computed its "
-         f"energies) {100 * ke['every 1 us']['fraction']:.1f}%, at our thermo rows (every "
-         f"{paper['thermo_every']} steps) {100 * ke['thermo rows']['fraction']:.1f}%.  The "
-         "kinetic energy's peak lasts about a microsecond, so a coarse log misses it by an "
-         "amount that depends on where its rows fall."]
-    if "thermo rows, old halt" in ke:
-        L.append(f"Before this section the decks stopped at the first thermo row with |stress| "
-                 "below 30% of the peak, before the kinetic energy had peaked: read at the thermo "
-                 "rows up to that step (step "
-                 f"{paper['old_halt_step']}) the same run gives "
-                 f"{100 * ke['thermo rows, old halt']['fraction']:.1f}% (and the constant "
-                 f"loading {100 * cke['thermo rows, old halt']['fraction']:.1f}%), the earlier "
-                 "page's numbers; the halt now waits until the energy has been damped.")
-    L.append(f"Total energy.  The model starts with no energy, so the total energy (eq. 25) is "
-             "the work done so far; the work hardly grows during the failure (over the final "
-             f"work: {100 * ke['every step']['over_final_work']:.1f}%).  Over the largest "
-             f"elastic energy the peak is {100 * paper['ke_over_peak_elastic']:.1f}%.")
+    """What each change moves, the earlier page's numbers, and the failure time's two
+    readings of the schedule."""
+    runs, p, block = data["runs"], PAPER, data["block"]
+    paper, const, dt1 = runs["tension_stepwise"], runs["tension_constant"], runs[
+        "tension_constant_dt1e-8"]
+    ke, ev = paper["ke"], paper["event"]
+    peak_paper = p["3d.energy.tension.peak_kinetic"].value
+    L = ["", f"**Sampling.**  At every step the paper's set-up peaks at "
+         f"{100 * ke['every step']['fraction']:.1f}% (the paper: {100 * peak_paper:.1f}%).  "
+         f"The kinetic energy stays above half its peak for {_us(paper['ke_width_s'])} us; "
+         f"sampled once per loading step ({_us(paper['paper_every'] * paper['dt'], 0)} us, "
+         f"as the paper computed its energies) the peak reads "
+         f"{100 * ke['every 1 us']['fraction']:.1f}%, at our thermo rows (every "
+         f"{paper['thermo_every']} steps, {_us(paper['thermo_every'] * paper['dt'])} us) "
+         f"{100 * ke['thermo rows']['fraction']:.1f}%.  A log coarser than the peak's width "
+         "misses it by as much as its rows happen to fall off it: the earlier page's stepwise "
+         "number was read at these thermo rows."]
+    old, old_event = ke.get("thermo rows, old halt"), paper.get("event_to_old_halt")
+    if old is not None and old_event is not None:
+        L += ["", f"**The earlier page's numbers.**  Before, the decks stopped at the first "
+              f"thermo row with |stress| below {100 * data['halt_fraction']:.0f}% of its peak: "
+              f"here step {paper['old_halt_step']}; the failure started at step "
+              f"{ev['start_step']}, the kinetic energy peaked at step "
+              f"{ke['every step']['step']} and the last bond of the failure broke at step "
+              f"{ev['end_step']}.  Read at the thermo rows up to that step this run gives "
+              f"{100 * old['fraction']:.1f}% (the constant loading "
+              f"{100 * const['ke']['thermo rows, old halt']['fraction']:.1f}%, at every step "
+              f"{100 * const['ke']['every step']['fraction']:.1f}%).  The breaking time was "
+              f"the 2%-98% time of the heat up to the halt: {_us(old_event['duration_2_98_s'])}"
+              f" us from this log cut there, {_us(ev['duration_2_98_s'])} us with the whole "
+              "failure.  The paper reads Fig. 6d from start to end: "
+              f"{_us(ev['duration_s'])} us here (the paper: "
+              f"{_us(p['3d.energy.tension.duration_s'].value)} us), a time that hangs on "
+              f"single bonds: the last one broke {_us(ev['last_pause_s'])} us after the one "
+              f"before it."]
+    ratio = math.log(runs["tension_constant_damping0.5"]["ke"]["every step"]["fraction"]
+                     / runs["tension_constant_damping2"]["ke"]["every step"]["fraction"])
+    slope = ratio / math.log(4.0)       # -d ln(peak) / d ln(eta), from eta x 0.5 to x 2
+    box = block["eta_box_over_elements"]
     d05, d2 = runs["tension_constant_damping0.5"], runs["tension_constant_damping2"]
-    L.append("Damping.  The deck's eta is eq. 28 with V the elements' volume (N sqrt2 d^3/2); "
-             "the outer box would change it by a few per cent.  Halving eta (constant loading) "
-             f"moves the every-step peak from {100 * cke['every step']['fraction']:.1f}% to "
-             f"{100 * d05['ke']['every step']['fraction']:.1f}%, doubling it to "
-             f"{100 * d2['ke']['every step']['fraction']:.1f}%; the start-to-end time from "
-             f"{_us(const['event']['duration_s'])} to {_us(d05['event']['duration_s'])} and "
-             f"{_us(d2['event']['duration_s'])} us.")
-    L.append(f"Loading and time step.  Constant loading at the paper's time step and at ours "
-             f"gives {_us(runs['tension_constant_dt1e-8']['event']['duration_s'])} and "
-             f"{_us(const['event']['duration_s'])} us start to end against "
-             f"{_us(paper['event']['duration_s'])} us stepwise (the paper: "
-             f"{_us(p['3d.energy.tension.duration_s'].value)} us).  The 2%-98% times are "
-             "shorter because the first and the last bonds break alone, slowly.")
-    L.append(f"Width.  The block spans {1e3 * widths[0][1]:.2f} mm between centres along x "
-             f"and {1e3 * (widths[2][1] - data['block']['d']):.2f} mm along y; its outer "
-             f"width along y, {ENERGY_SIZE} elements of {1e3 * data['block']['d']:.0f} mm, is "
-             "the paper's 1.2 cm; which width the crack crosses depends on where it starts, "
-             "so the speeds are given for each.")
+    L += ["", f"**Total energy.**  The model starts with no energy, so the total energy (eq. "
+          "25) is the work done so far; the work hardly grows during the failure (the peak "
+          f"over the final work: {100 * ke['every step']['over_final_work']:.1f}%).  Over the "
+          f"largest elastic energy the peak is {100 * paper['ke_over_peak_elastic']:.1f}%.", "",
+          "**Damping.**  The deck's eta is eq. 28 with V the elements' volume (N sqrt2 d^3 / 2)"
+          f"; with V the outer box, eta would be {box:.3f} times it.  Under constant loading, "
+          f"halving eta moves the every-step peak from "
+          f"{100 * const['ke']['every step']['fraction']:.1f}% to "
+          f"{100 * d05['ke']['every step']['fraction']:.1f}% and doubling it to "
+          f"{100 * d2['ke']['every step']['fraction']:.1f}% (the peak goes as eta^-"
+          f"{slope:.2f}); the start-to-end time from {_us(const['event']['duration_s'])} us "
+          f"to {_us(d05['event']['duration_s'])} and {_us(d2['event']['duration_s'])} us.  "
+          f"The outer box's eta would raise the paper's set-up's peak to about "
+          f"{100 * ke['every step']['fraction'] * box ** -slope:.1f}%; the paper's "
+          f"{100 * peak_paper:.1f}% needs eta x "
+          f"{(peak_paper / ke['every step']['fraction']) ** (-1 / slope):.3f}.",
+          "", f"**Loading and time step.**  From the paper's set-up, constant loading (at the "
+          f"paper's time step) moves the every-step peak from "
+          f"{100 * ke['every step']['fraction']:.1f}% to "
+          f"{100 * dt1['ke']['every step']['fraction']:.1f}% and the start-to-end time from "
+          f"{_us(ev['duration_s'])} to {_us(dt1['event']['duration_s'])} us; our time step "
+          f"then gives {100 * const['ke']['every step']['fraction']:.1f}% and "
+          f"{_us(const['event']['duration_s'])} us.", "",
+          f"**Width.**  The block spans {1e3 * widths[0][1]:.2f} mm between centres along x and "
+          f"{1e3 * (widths[2][1] - block['d']):.2f} mm along y; its outer width along y, "
+          f"{ENERGY_SIZE} elements of {1e3 * block['d']:.0f} mm, is the paper's "
+          f"{100 * p['3d.energy.tension.width_m'].value:.1f} cm.  The speeds are a width over "
+          "the start-to-end time, as the paper takes them; which width the crack crosses "
+          "depends on where it starts."]
     if "elongation_m" in paper:
         step = p["3d.schedule.tension.step_m"].value
         loading_step_s = p["3d.schedule.relax_steps"].value * p["3d.schedule.dt_s"].value
         t_paper = p["3d.energy.tension.failure_time_s"].value
         both = paper["elongation_m"] / (2 * step) * loading_step_s
         one = paper["elongation_m"] / step * loading_step_s
-        L.append(f"Failure time.  Our block's ends are {1e6 * paper['elongation_m']:.3f} um "
-                 "further apart when it fails.  With both ends moving "
-                 f"{step:.2g} m per loading step of {_us(loading_step_s, 0)} us (our reading) "
-                 f"that takes {both:.4g} s; with one end moving, {one:.4g} s.  The paper's "
-                 f"{t_paper:.4g} s means an elongation of {1e6 * 2 * step * t_paper / loading_step_s:.3f}"
-                 f" um (both ends) or {1e6 * step * t_paper / loading_step_s:.3f} um (one end).")
+        height = block["span_m"][2]
+        e_both = 2 * step * t_paper / loading_step_s
+        e_one = step * t_paper / loading_step_s
+        L += ["", f"**Failure time.**  Our block's ends are {1e6 * paper['elongation_m']:.3f} um"
+              f" further apart when it starts to fail (a strain of "
+              f"{paper['elongation_m'] / height:.3g} over the {1e3 * height:.2f} mm between the "
+              "end layers' centres).  With both ends moving "
+              f"{step:.2g} m per loading step of {_us(loading_step_s, 0)} us (the deck's "
+              f"reading) that takes {both:.4g} s; with one end moving, {one:.4g} s.  Neither is "
+              f"the paper's {t_paper:.4g} s, which means an elongation of {1e6 * e_both:.3f} um "
+              f"(both ends, a strain of {e_both / height:.3g}) or {1e6 * e_one:.3f} um (one end, "
+              f"{e_one / height:.3g}); the rock's Tu/E is {data['rock_failure_strain']:.3g}, and "
+              "the multi-unit blocks fail below it."]
     return L
 
 

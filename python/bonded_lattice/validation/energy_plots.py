@@ -51,7 +51,7 @@ def energy_curves_png(path: str | Path, whole: dict, window: dict, title: str = 
     tw, cw = _columns(window, "time_s")
     if inset_kinetic_only:
         inset.plot(tw * 1e6, cw[KINETIC], color="C1", lw=1.2)
-        inset.set_ylabel("kinetic (J)", fontsize=7)
+        inset.set_title("kinetic energy (J)", fontsize=7)
     else:
         _energy_lines(inset, tw, cw, 1e6, legend=False)
     stride = window.get("stride", 1)

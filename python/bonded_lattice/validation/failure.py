@@ -37,9 +37,10 @@ QUIET_S = 1.0e-6
 # heat, external work, balance error
 WINDOW_COLUMNS = ("c_energy[1]", "c_energy[2]", "c_energy[4]", "c_energy[5]", "c_energy[6]",
                   "c_energy[7]", "c_energy[8]", "c_energy[10]")
-# rows of a window kept in the results file: every step of a tension failure (a few hundred
-# steps) with its surroundings; a compression failure (thousands of steps) thinned to this
-WINDOW_ROWS = 800
+# rows of a window kept in the results file: every step of the 2166-element block's tension
+# failure under the paper's schedule (about 300 steps of 1e-8 s, with 150 before it and 5 us
+# after it: 950 rows); a compression failure (thousands of steps) thinned to this
+WINDOW_ROWS = 1000
 
 
 def _check_dt(dt: float) -> float:
@@ -55,7 +56,9 @@ def failure_event(log: dict[str, np.ndarray], dt: float, quiet_s: float = QUIET_
     Returns steps and times (s, step x dt): ``start_step``/``end_step`` (the paper's D1/D2),
     ``duration_s`` (end - start), ``duration_2_98_s`` (2% to 98% of the burst's heat),
     ``heat_J`` (the burst's), ``precursor_fraction`` (heat released before the burst, over
-    the final heat), ``peak_stress_step`` (the largest |stress| in the log).
+    the final heat), ``peak_stress_step`` (the largest |stress| in the log),
+    ``first_pause_s``/``last_pause_s`` (from the first to the second increase, from the last
+    but one to the last).
     """
     dt = _check_dt(dt)
     if not quiet_s > 0:
@@ -87,6 +90,10 @@ def failure_event(log: dict[str, np.ndarray], dt: float, quiet_s: float = QUIET_
         "precursor_fraction": float(before / heat[-1]),
         "peak_stress_step": None if stress is None else int(step[int(np.argmax(stress))]),
         "quiet_s": float(quiet_s),
+        # the pauses after the first and before the last increase: how much the
+        # start-to-end time hangs on single bonds
+        "first_pause_s": float((step[burst[1]] - step[first]) * dt) if len(burst) > 1 else 0.0,
+        "last_pause_s": float((step[last] - step[burst[-2]]) * dt) if len(burst) > 1 else 0.0,
     }
 
 
@@ -107,7 +114,8 @@ def peak_kinetic_fraction(log: dict[str, np.ndarray], every: int = 1) -> dict:
     if not rows.any():
         raise ValueError(f"no step of the log is a multiple of every = {every} with work")
     k = np.flatnonzero(rows)[int(np.argmax(kinetic[rows] / work[rows]))]
-    return {"fraction": float(kinetic[k] / work[k]), "over_final_work": float(kinetic[k] / work[-1]),
+    return {"fraction": float(kinetic[k] / work[k]),
+            "over_final_work": float(kinetic[k] / work[-1]),
             "step": int(step[k]), "kinetic_J": float(kinetic[k])}
 
 

@@ -56,6 +56,9 @@ PAPER: dict[str, PaperValue] = {
                                                         "crack runs at about 4240 m/s"),
     "3d.energy.tension.failure_time_s": PaperValue(
         1.072e-2, "Liu 2017, section 5.3 (Fig. 6b): the model breaks in two at 1.072e-2 s"),
+    "3d.energy.tension.frictional_heat": PaperValue(
+        0.0, "Liu 2017, section 5.3: there is no slipping when the model splits into two "
+             "halves in the Tu test, so the frictional heat is always zero"),
     "3d.energy.elements": PaperValue(2166.0, "Liu 2017, section 5.3: the cubic model with "
                                              "2166 elements (12 along y) of the energy tests"),
     "3d.schedule.tension.step_m": PaperValue(
