@@ -69,14 +69,26 @@ TESTS = ("tension", "compression", "elastic", "confined", "periodic")
 ENDS = ("platens", "layers")
 # how the elastic test loads: platens (compression) or end layers pulled apart (tension)
 ELASTIC_LOADS = ("compression", "tension")
-# the per-step log of a deck with the energy budget (fix ave/time, read by
-# io.read_ave_time): the breaking heat of the normal and of the shear springs
-# (compute lattice/energy), the bonds broken in tension and in shear, the kinetic
-# energy and the external work (the peak kinetic fraction at every step, not only
-# at the thermo rows: a failure can last fewer steps than a thermo interval)
+# the per-step log of a deck with the energy budget (read by io.read_ave_time): every term
+# the 2017 paper's Fig. 6c/d heat curves and insets need, at every time step of a window
+# around the failure -- the breaking heat of the normal and of the shear springs (compute
+# lattice/energy), the bonds broken in tension and in shear, the kinetic energy and the
+# external work (the first six, the log's columns before issue 19), then the elastic
+# energy, the viscous and the frictional heat, the balance error and the stress.  A
+# failure lasts fewer steps than a thermo interval, so the thermo rows (the whole run,
+# every term) cannot time it.
 BREAKING_LOG = "breaking.dat"
 BREAKING_COLUMNS = ("c_energy[5]", "c_energy[6]", "c_bonds[2]", "c_bonds[3]", "c_energy[2]",
-                    "c_energy[8]")
+                    "c_energy[8]", "c_energy[1]", "c_energy[4]", "c_energy[7]", "c_energy[10]",
+                    "v_stress")
+# the window: the last BREAKING_WINDOW steps of the run, kept in a ring buffer (fix vector
+# ... nmax) and written to the log after the run.  A strength deck stops within a few
+# thermo intervals of the failure (fix halt), so the window holds the failure and the
+# steps before it, while the file stays bounded however long the loading was (the papers'
+# stepwise schedule runs about 1e6 steps in 3D tension: about 150 MB at every step).
+# 20000 steps hold a 3D compression failure (about 1e-4 s in the 2017 paper: 10000 of its
+# 1e-8 s steps) twice over; the ring costs 8 bytes per column and step (about 2 MB).
+BREAKING_WINDOW = 20000
 
 
 @dataclass(frozen=True)
@@ -102,6 +114,7 @@ class DeckSpec:
     relax_steps: int = 0      # stepwise: time steps after each loading step
     gauges: bool = True       # mid-height lateral gauges (False: blocks of 1-2 layers)
     halt_fraction: float = 0.3  # strength tests stop when |stress| < this x peak (0: never)
+    halt_delay: int = 0       # ... this many steps later (energy decks: the failure's aftermath)
     energy: bool = False      # energy budget (compute lattice/energy) in the thermo output
     shear_frame: str = "fixed"  # one of SHEAR_FRAMES (the papers': fixed)
     # heterogeneous model: the data file has a Grains section (lattice.write_data) and the
@@ -164,6 +177,9 @@ class DeckSpec:
         if not 0 <= self.halt_fraction < 1:
             raise ValueError(f"halt_fraction = {self.halt_fraction} is out of range: need "
                              "0 <= halt_fraction < 1")
+        if self.halt_delay < 0:
+            raise ValueError(f"halt_delay = {self.halt_delay} is out of range: need "
+                             "halt_delay >= 0")
         if self.eta < 0:
             raise ValueError(f"eta = {self.eta} is out of range: need eta >= 0")
         if self.confining < 0:
@@ -436,10 +452,7 @@ def _output(spec: DeckSpec) -> str:
                 "dump_modify     particles sort id format float %.17g\n")
     halt = ""
     if spec.energy and spec.test != "elastic":
-        halt += f"""# breaking heat, broken bonds, kinetic energy and work at every step, to time the fracture (Liu 2017 reads
-# the crack's crossing time off the breaking heat)
-fix             breaklog all ave/time 1 1 1 {" ".join(BREAKING_COLUMNS)} file {BREAKING_LOG} format " %.17g"
-"""
+        halt += _breaking_ring()
     if spec.test != "elastic" and spec.halt_fraction > 0:
         halt += f"""# stop once the block has failed: |stress| below {spec.halt_fraction:g} of its peak so far,
 # armed only once the peak exceeds {ARM_FRACTION:g} of a bond's tensile stress Kn Xb / d^{spec.dim - 1}
@@ -447,8 +460,7 @@ fix             breaklog all ave/time 1 1 1 {" ".join(BREAKING_COLUMNS)} file {B
 variable        smag equal abs(v_stress)
 fix             peaklog all vector {spec.thermo_every} v_smag
 variable        failed equal (v_smag<{spec.halt_fraction:g}*max(f_peaklog))&&(max(f_peaklog)>{halt_arm_stress(spec):.6g})
-fix             stop all halt {spec.thermo_every} v_failed > 0.5 error continue
-"""
+""" + _halt(spec)
     energy = columns = ""
     if spec.energy:
         # after the fixes that add forces, as compute lattice/energy requires; the
@@ -466,7 +478,57 @@ run             0
 # full precision: displacements of 1e-7 m vanish in the default %g format
 write_dump      all custom dump.initial {ATOM_DUMP_COLUMNS} {full}
 {dump}{halt}run             {spec.steps}
-write_dump      all custom dump.final {ATOM_DUMP_COLUMNS} {full}
+{_breaking_log() if spec.energy and spec.test != "elastic" else ""}write_dump      all custom dump.final {ATOM_DUMP_COLUMNS} {full}
+"""
+
+
+def _halt(spec: DeckSpec) -> str:
+    """``fix halt`` at the first thermo row with ``v_failed``, or with ``halt_delay`` the
+    first one at least that many steps later (counted in failed rows: the stress of a broken
+    block can swing back above the threshold with its waves, never for long)."""
+    if spec.halt_delay == 0:
+        return f"fix             stop all halt {spec.thermo_every} v_failed > 0.5 error continue\n"
+    rows = 1 + math.ceil(spec.halt_delay / spec.thermo_every)
+    return f"""# go on for {spec.halt_delay} steps after the failure ({rows} failed thermo rows): the kinetic
+# energy the failure releases peaks and is damped into heat after the stress has dropped
+fix             faillog all vector {spec.thermo_every} v_failed
+variable        failedrows equal sum(f_faillog)
+fix             stop all halt {spec.thermo_every} v_failedrows >= {rows} error continue
+"""
+
+
+def _breaking_ring() -> str:
+    """The ring buffer of the per-step log: :data:`BREAKING_COLUMNS` at every step, the last
+    :data:`BREAKING_WINDOW` steps kept."""
+    # each column through an equal-style variable: fix vector takes only values that are all
+    # intensive or all extensive (the computes' are extensive, the stress is intensive)
+    names = [f"v_ring{j}" for j in range(len(BREAKING_COLUMNS))]
+    variables = "".join(f"variable        ring{j} equal {c}\n"
+                        for j, c in enumerate(BREAKING_COLUMNS))
+    return f"""# every term of the energy budget, the broken bonds and the stress at every step, the last
+# {BREAKING_WINDOW} steps kept (fix vector ... nmax: a ring buffer), to time the failure at the
+# resolution of a step (the 2017 paper reads the crack's crossing time off the breaking heat)
+variable        logstep equal step
+{variables}variable        ringstart equal $(step)
+fix             breakring all vector 1 v_logstep {" ".join(names)} nmax {BREAKING_WINDOW}
+"""
+
+
+def _breaking_log() -> str:
+    """Write the ring buffer to :data:`BREAKING_LOG` in the format of ``fix ave/time ... file``
+    (two header lines, then a step and the columns per line; io.read_ave_time reads it)."""
+    k = len(BREAKING_COLUMNS)
+    values = " ".join(f"$(f_breakring[v_breakrow][{j}]:%.17g)" for j in range(2, k + 2))
+    return f"""# the per-step window: the ring buffer's rows (oldest first) to {BREAKING_LOG}
+variable        ringsteps equal step-v_ringstart+1
+variable        ringrows equal $(v_ringsteps*(v_ringsteps<={BREAKING_WINDOW})+{BREAKING_WINDOW}*(v_ringsteps>{BREAKING_WINDOW}))
+print           "# Time-averaged data for fix breakring (every step, the last $(v_ringrows:%.0f) steps of the run)" file {BREAKING_LOG} screen no
+print           "# TimeStep {" ".join(BREAKING_COLUMNS)}" append {BREAKING_LOG} screen no
+variable        breakrow loop $(v_ringrows:%.0f)
+label           breakrow_next
+print           "$(f_breakring[v_breakrow][1]:%.0f) {values}" append {BREAKING_LOG} screen no
+next            breakrow
+jump            SELF breakrow_next
 """
 
 

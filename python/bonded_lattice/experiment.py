@@ -231,6 +231,13 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
                    else thermo_every, elastic_load=elastic_load)
 
 
+# energy decks run this long (s) after the failure halt's condition is first met: the
+# kinetic energy of the 2166-element tension block peaks about 2 us after its stress has
+# dropped below 30% of the peak, and the papers' damping takes 2 m/eta (about 1.6 us) to
+# halve it; 20 us shows the peak and its decay into viscous heat (Liu 2017 Fig. 6b, B1 to B2)
+ENERGY_AFTERMATH = 2.0e-5
+
+
 def end_particles(lattice: Lattice) -> int:
     """Particles in the bottom layer: those touching a platen."""
     h = lattice.positions[:, lattice.axis]
@@ -304,6 +311,7 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
     """
     halt = {} if halt_fraction is None else {"halt_fraction": halt_fraction}
     return DeckSpec(gauges=gauges, energy=energy, shear_frame=shear_frame, grains=grains,
+                    halt_delay=int(math.ceil(ENERGY_AFTERMATH / plan.dt)) if energy else 0,
                     atom_style=atom_style, ends=ends, wall_kn=wall_kn,
                     test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
                     area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps,

@@ -56,7 +56,9 @@ def test_breaking_duration_from_two_to_ninety_eight_percent_of_the_heat(tmp_path
     path = tmp_path / "breaking.dat"
     steps = np.arange(101)
     lines = ["# Time-averaged data for fix breaklog", "# TimeStep " + " ".join(BREAKING_COLUMNS)]
-    lines += [f"{k} {0.75 * k} {0.25 * k} 0 0 0 0" for k in steps]
+    # the two breaking heats first, the other columns (BREAKING_COLUMNS[2:]) zero
+    zeros = " 0" * (len(BREAKING_COLUMNS) - 2)
+    lines += [f"{k} {0.75 * k} {0.25 * k}{zeros}" for k in steps]
     path.write_text("\n".join(lines) + "\n")
     assert breaking_duration(path, dt=1e-8) == pytest.approx(95e-8, rel=1e-12)
     # the 2017 paper's definition, start to end: the first heat (step 1) to 100 J (step 100)

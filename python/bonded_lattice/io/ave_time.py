@@ -2,8 +2,8 @@
 
 Such a file starts with two comment lines, ``# Time-averaged data for fix ID`` and ``#
 TimeStep name name ...``, then one line of numbers per output step.  The energy-budget decks
-write ``breaking.dat`` this way (step, the breaking heat of the normal and of the shear springs,
-the bonds broken in tension and in shear: :mod:`bonded_lattice.decks`).
+write ``breaking.dat`` in this format (from a ring buffer, after the run: the step and
+:data:`bonded_lattice.decks.BREAKING_COLUMNS` at every step of a window around the failure).
 """
 
 from __future__ import annotations

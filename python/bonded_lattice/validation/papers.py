@@ -70,6 +70,20 @@ PAPER: dict[str, PaperValue] = {
                                                         "crack runs at about 4240 m/s"),
     "3d.energy.tension.failure_time_s": PaperValue(
         1.072e-2, "Liu 2017, section 5.3 (Fig. 6b): the model breaks in two at 1.072e-2 s"),
+    "3d.energy.tension.frictional_heat": PaperValue(
+        0.0, "Liu 2017, section 5.3: there is no slipping when the model splits into two "
+             "halves in the Tu test, so the frictional heat is always zero"),
+    "3d.energy.elements": PaperValue(2166.0, "Liu 2017, section 5.3: the cubic model with "
+                                             "2166 elements (12 along y) of the energy tests"),
+    "3d.schedule.tension.step_m": PaperValue(
+        1.7e-10, "Liu 2017, section 5.1: boundary displacement 1.70e-10 m in each tensile step "
+                 "(tests of tensile strength)"),
+    "3d.schedule.compression.step_m": PaperValue(
+        1.7e-9, "Liu 2017, section 5.1: boundary displacement 1.70e-9 m in each compressive "
+                "step (tests of compressive strength)"),
+    "3d.schedule.relax_steps": PaperValue(100.0, "Liu 2017, section 5.1: after each step the "
+                                                 "model is run for 100 time steps"),
+    "3d.schedule.dt_s": PaperValue(1e-8, "Liu 2017, section 5.1: the time step is 1e-8 s"),
     "3d.energy.compression.failure_duration_s": PaperValue(
         1e-4, "Liu 2017, section 5.3 (Fig. 6a inset): the failure takes about 1e-4 s"),
 }
