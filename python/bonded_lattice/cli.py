@@ -50,7 +50,8 @@ def cmd_convert(args: argparse.Namespace) -> int:
 def cmd_generate(args: argparse.Namespace) -> int:
     from .conversion import rock_to_bond
     from .decks import write_deck
-    from .experiment import choose_ends, deck_spec, has_mid_height, plan_test, test_lattice
+    from .experiment import (check_platen_stiffness, choose_ends, deck_spec, has_mid_height,
+                             plan_test, test_lattice)
     from .lattice import write_data
 
     rock = _rock(args)
@@ -70,7 +71,8 @@ def cmd_generate(args: argparse.Namespace) -> int:
     write_deck(deck_spec(plan, args.test, args.dim, bond, args.confining, args.dump_every,
                          has_mid_height(lattice), args.energy, args.shear_frame, pair,
                          atom_style=args.atom_style,
-                         ends=choose_ends(lattice, args.test, args.ends)),
+                         ends=choose_ends(lattice, args.test, args.ends),
+                         wall_kn=check_platen_stiffness(args.platen_stiffness) * bond.Kn),
                out / f"in.{args.test}")
     print(f"wrote {out / 'data.lattice'} ({lattice.n} particles) and {out / ('in.' + args.test)}")
     if grain is not None:
@@ -89,7 +91,8 @@ def cmd_run(args: argparse.Namespace) -> int:
                        d=args.d, progress=not args.quiet, dump_every=args.dump_every,
                        orientation=args.orientation, energy=args.energy,
                        shear_frame=args.shear_frame, atom_style=args.atom_style,
-                       ends=args.ends, **plan_options(args))
+                       ends=args.ends, platen_stiffness=args.platen_stiffness,
+                       **plan_options(args))
     print(summary_table(summary))
     if summary["energy"]:
         e = summary["energy"]
@@ -122,7 +125,7 @@ def cmd_envelope(args: argparse.Namespace) -> int:
         summary = run_test(rock, args.dim, "confined", args.n, Path(args.out) / f"confined_{p:g}",
                            np_=args.np, d=args.d, progress=not args.quiet,
                            orientation=args.orientation, atom_style=args.atom_style,
-                           ends=args.ends, **options)
+                           ends=args.ends, platen_stiffness=args.platen_stiffness, **options)
         peaks.append(summary["measured"]["sigma1"])
         print(f"sigma3 = {p / 1e6:8.3f} MPa   sigma1 = {peaks[-1] / 1e6:9.3f} MPa "
               f"(Coulomb target {summary['target']['sigma1'] / 1e6:9.3f} MPa)")

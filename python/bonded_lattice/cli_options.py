@@ -147,6 +147,11 @@ def test_options(p: argparse.ArgumentParser, test: bool = True, choose_test: boo
                        "platens (the papers'), layers (the end layers held and pushed, for "
                        "stepped ends) or auto (default: platens for flat ends, layers for the "
                        "stepped ends of a turned lattice)")
+        p.add_argument("--platen-stiffness", type=float, default=lib["platen_stiffness"],
+                       help="the platens' springs as a multiple of the bonds' Kn (default "
+                       "%(default)g; 0 < value <= 20): a block's compressive deficit grows as "
+                       "they soften (docs/validation.md, 'The platens decide the compressive "
+                       "deficit')")
     if not test:
         return
     add(p, "n", TEST_DEFAULTS["n"], help="particles across (2D) or elements along y (3D); "

@@ -286,6 +286,16 @@ def choose_ends(lattice: Lattice, test: str, ends: str = "auto") -> str:
     return "platens" if end_contacts(lattice) == end_band_particles(lattice) else "layers"
 
 
+def check_platen_stiffness(value: float) -> float:
+    """``value`` if it is a valid platen stiffness (a multiple of Kn, 0 < value <=
+    :data:`MAX_PLATEN_STIFFNESS`); a ValueError naming it and the range otherwise."""
+    if not (math.isfinite(value) and 0 < value <= MAX_PLATEN_STIFFNESS):
+        raise ValueError(f"platen_stiffness = {value} is out of range: need 0 < "
+                         f"platen_stiffness <= {MAX_PLATEN_STIFFNESS:g} (a multiple of Kn; "
+                         "stiffer platens need a smaller time step)")
+    return value
+
+
 def has_mid_height(lattice: Lattice) -> bool:
     """Whether particles lie in the middle half of the height (for the lateral gauges)."""
     h = lattice.positions[:, lattice.axis]
@@ -347,11 +357,7 @@ class RockTest(Study):
                  halt_fraction: float | None = None,
                  **plan_options) -> None:
         super().__init__(out, np_=np_, progress=progress, pictures=pictures)
-        if not (math.isfinite(platen_stiffness) and 0 < platen_stiffness <= MAX_PLATEN_STIFFNESS):
-            raise ValueError(f"platen_stiffness = {platen_stiffness} is out of range: need 0 < "
-                             f"platen_stiffness <= {MAX_PLATEN_STIFFNESS:g} (a multiple of Kn; "
-                             "stiffer platens need a smaller time step)")
-        self.platen_stiffness = platen_stiffness
+        self.platen_stiffness = check_platen_stiffness(platen_stiffness)
         self.rock, self.dim, self.test, self.n, self.d = rock, dim, test, n, d
         self.bond = bond
         self.dump_every = dump_every

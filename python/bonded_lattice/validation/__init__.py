@@ -52,7 +52,7 @@ def validate(out: str | Path = "validation-runs", doc: str | Path = "docs/valida
             start = time.perf_counter()
             section_result = section.run(v)
             store_section(data, section.name, section_result, root, np_, slow,
-                          _run_seconds(section_result))
+                          _run_seconds(section_result), reuse)
             save_results(data, results_path)
             if progress:
                 print(f"validate: section {section.name} done in "

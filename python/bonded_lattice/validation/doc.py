@@ -79,5 +79,8 @@ def _rock_text() -> str:
 
 def _provenance(entry: dict) -> str:
     slow = ", with `--slow`" if entry.get("slow") else ""
-    return (f"*Runs: commit {entry['commit']}, {entry['date']}, {entry['ranks']} MPI ranks"
-            f"{slow}, {entry['run_seconds'] / 60:.1f} min; {entry['machine']}.*")
+    reuse = (" (runs whose folders held a summary were read, not run again)"
+             if entry.get("reuse") else "")
+    return (f"*Results: commit {entry['commit']}, {entry['date']}, {entry['ranks']} MPI ranks"
+            f"{slow}{reuse}; {entry['run_seconds'] / 60:.1f} min of runs (wall time, as each "
+            f"run recorded it); {entry['machine']}.*")

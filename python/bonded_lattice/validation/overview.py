@@ -8,8 +8,6 @@ out.  "Papers' set-up" means the stepwise schedule and the papers' damping (sect
 
 from __future__ import annotations
 
-from typing import Callable
-
 import numpy as np
 
 from .doc import pct
@@ -26,10 +24,8 @@ TESTS = {"Tu": "tension", "Cu": "compression"}
 def overview_lines(results: dict) -> list[str]:
     """The side-by-side table (empty if no section it draws on is in ``results``)."""
     rows: list[tuple[str, str, str, str, str]] = []
-    for build in (_unit_rows, _ladder_rows, _elastic_rows):
+    for build in (_unit_rows, _ladder_rows, _platen_rows, _elastic_rows, _energy_rows):
         rows += build(results)
-    for extra in EXTRA_ROWS:
-        rows += extra(results)
     if not rows:
         return []
     lines = ["## The papers' results side by side", "",
@@ -117,5 +113,68 @@ def _elastic_rows(results: dict) -> list[tuple[str, str, str, str, str]]:
              "centres' span (or an area as close to it)")]
 
 
-# rows other sections add (energy, failure times ...): functions of the results
-EXTRA_ROWS: list[Callable[[dict], list[tuple[str, str, str, str, str]]]] = []
+def _platen_rows(results: dict) -> list[tuple[str, str, str, str, str]]:
+    data = section_data(results, "platens")
+    if data is None:
+        return []
+    rows = []
+    for dim in ("2", "3"):
+        runs = [r["runs"] for r in data[dim]["rows"]]
+        kn = _mean([r["1"]["relative_error"]["Cu"] for r in runs])
+        ours = _mean([r["2"]["relative_error"]["Cu"] for r in runs])
+        held = _mean([r["layers"]["relative_error"]["Cu"] for r in runs])
+        sizes = ", ".join(str(r["n"]) for r in data[dim]["rows"])
+        rows.append((f"{dim}D multi-unit Cu and the platens ({'N' if dim == '2' else 'n_y'} "
+                     f"= {sizes})", pct(PAPER[f'{dim}d.multi.Cu'].value),
+                     f"{pct(kn)} with platen springs of Kn", f"{pct(ours)} (platens 2 Kn)",
+                     f"the platens' stiffness sets the deficit: held end layers instead of "
+                     f"platens give {pct(held)}; the papers do not state their platens' "
+                     "stiffness (section 'The platens decide the compressive deficit')"))
+    return rows
+
+
+def _share(x: float) -> str:
+    return f"{100 * x:.1f}%"
+
+
+def _energy_rows(results: dict) -> list[tuple[str, str, str, str, str]]:
+    data = section_data(results, "energy")
+    if data is None:
+        return []
+    runs = data["runs"]
+    paper_run, ours = runs.get("tension_stepwise"), runs.get("tension_constant")
+    rows = []
+    if paper_run is not None and ours is not None:
+        key = "3d.energy.tension"
+        width = data["block"]["span_m"][1] + data["block"]["d"]
+        rows += [
+            ("3D tension: peak kinetic energy / work", _share(PAPER[f"{key}.peak_kinetic"].value),
+             _share(paper_run["ke"]["every step"]["fraction"]),
+             _share(ours["ke"]["every step"]["fraction"]),
+             f"at every step; read at thermo rows every {paper_run['thermo_every']} steps the "
+             f"same run gives {_share(paper_run['ke']['thermo rows']['fraction'])} (the earlier "
+             "page's number): sampling"),
+            ("3D tension: bonds break within, start to end",
+             f"{1e6 * PAPER[f'{key}.duration_s'].value:.2f} us",
+             f"{1e6 * paper_run['event']['duration_s']:.2f} us",
+             f"{1e6 * ours['event']['duration_s']:.2f} us",
+             f"2%-98%: {1e6 * paper_run['event']['duration_2_98_s']:.2f} us (the earlier page's "
+             "definition, on heat cut short by the old halt)"),
+            ("3D tension: crack speed", f"{PAPER[f'{key}.crack_speed'].value:.0f} m/s",
+             f"{width / paper_run['event']['duration_s']:.0f} m/s",
+             f"{width / ours['event']['duration_s']:.0f} m/s",
+             f"over the outer width along y, {1e3 * width:.1f} mm (the paper's 1.2 cm)"),
+            ("3D tension: the model breaks in two at",
+             f"{PAPER[f'{key}.failure_time_s'].value:.4g} s",
+             f"{paper_run['event']['start_s']:.4g} s", "",
+             "the paper's time needs a failure strain above the rock's Tu/E with both ends "
+             "moving, or far below it with one (section 'Energy budget'): not explained"),
+        ]
+    comp = runs.get("compression_constant")
+    if comp is not None:
+        rows.append(("3D compression: the failure takes",
+                     f"about {PAPER['3d.energy.compression.failure_duration_s'].value:.0e} s", "",
+                     f"{comp['event']['duration_s']:.2g} s",
+                     "start to end of the breaking-heat burst, our constant loading (the "
+                     "papers' stepwise compression run is not made)"))
+    return rows

@@ -40,11 +40,12 @@ def load_results(path: str | Path) -> dict:
 
 
 def store_section(results: dict, name: str, data: dict, root: Path, ranks: int, slow: bool,
-                  run_seconds: float) -> None:
-    """Put one section's ``data`` into ``results`` with where and when it was made."""
+                  run_seconds: float, reuse: bool = False) -> None:
+    """Put one section's ``data`` into ``results`` with where and when it was made (``reuse``:
+    runs whose folders held a summary were read, not run again)."""
     results["sections"][name] = {
         "commit": git_commit(root, mark_changes=True), "date": time.strftime("%Y-%m-%d"),
-        "machine": machine(), "ranks": ranks, "slow": slow,
+        "machine": machine(), "ranks": ranks, "slow": slow, "reuse": reuse,
         "run_seconds": round(run_seconds, 1), "data": data}
 
 
