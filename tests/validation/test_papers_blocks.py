@@ -68,3 +68,21 @@ def test_3d_small_strain_modulus_is_within_the_papers_percent(blocks):
     # average at strains from -1e-6 to -1e-3; each block here stays within 1% in E
     for n in SIZES[3]:
         assert abs(blocks[3, n, "elastic"]["relative_error"]["E"]) < 0.01
+
+
+def test_2d_platens_of_the_bonds_stiffness_lose_the_papers_compressive_strength(tmp_path):
+    # Liu 2013 para. 51: the multi-unit blocks' Cu is 22.2% below the formula on average (six
+    # sizes, 18 to 16611 particles).  The deficit is the platens' (docs/validation.md, "The
+    # platens decide the compressive deficit"): with springs of the bonds' own stiffness Kn
+    # our N = 8 and 15 blocks lose that much.  Tolerance 2 points: the paper gives only the
+    # six sizes' mean, and our per-size values at Kn spread 1.1 points over N = 8-30; the
+    # papers' stepwise schedule reads up to 1 point lower than this constant loading
+    rock = get_rock("quartz")
+    cu = [run_test(rock, 2, "compression", n, tmp_path / f"n{n}", np_=1, progress=False,
+                   crossings=100.0, damping=1.0, platen_stiffness=1.0)["relative_error"]["Cu"]
+          for n in (8, 15)]
+    assert abs(sum(cu) / len(cu) - (-0.222)) < 0.02, cu
+    # and our own 2 Kn platens do not: the choice of platen is what the difference measures
+    ours = run_test(rock, 2, "compression", 15, tmp_path / "n15_2kn", np_=1, progress=False,
+                    crossings=100.0, damping=1.0)["relative_error"]["Cu"]
+    assert ours > -0.18, ours
