@@ -9,7 +9,8 @@ from ..plotting import convergence_png
 from .doc import DocContext, paper_pct, pct
 from .papers import paper_value
 from .geometry import section_factor
-from .runner import Validation, rock_for
+from ..schedules import DEFAULT_LOADING
+from .runner import PAPER_DAMPING_LOADING, Validation, rock_for
 from .section import Section
 
 __all__ = ["SERIES", "UNITS"]
@@ -123,10 +124,12 @@ def _series_table(dim: str, rows: list[dict]) -> list[str]:
 def doc_series(data: dict, ctx: DocContext) -> list[str]:
     L = ["## Block sizes (Liu 2013 Figs. 6, 8; Liu 2017 Fig. 4)", "",
          "Elastic test to strain -1e-4 with unbreakable bonds (Xb and Fs0 x 100, as in "
-         "Liu 2017); strength tests with constant loading (platens at a speed that takes 100 "
-         "elastic-wave crossings to reach the failure strain) at the papers' damping.  In 2D "
-         "the last strength columns are our defaults (50 crossings and a quarter of the "
-         "papers' damping); in 3D the defaults are the settings of the main columns, and Cu "
+         "Liu 2017); strength tests with constant loading (platens at a speed that takes "
+         f"{PAPER_DAMPING_LOADING['crossings']:g} elastic-wave crossings to reach the failure "
+         f"strain) at the papers' damping.  In 2D the last strength columns are our defaults "
+         f"({DEFAULT_LOADING[2]['crossings']:g} crossings and eta x "
+         f"{DEFAULT_LOADING[2]['damping']:g}); in 3D the defaults are the settings of the main "
+         "columns, and Cu "
          f"is also measured at {SLOW_3D_CROSSINGS:g} crossings, slow enough to be converged (section "
          "'3D compression: how slow constant loading must be').  Stress "
          "is the platen force over the area between the outermost particles' centres; the "
