@@ -79,8 +79,8 @@ def damaged_particles(initial_dump: str | Path, final_dump: str | Path, dim: int
     for values in lost.values():
         damaged |= values > 0
     return {"dim": dim, "bounds": [float(x.min()), float(x.max()), float(y.min()), float(y.max())],
-            "x": [float(f"{v:.7g}") for v in x[damaged]],
-            "y": [float(f"{v:.7g}") for v in y[damaged]],
+            "x": [float(f"{v:.5g}") for v in x[damaged]],     # 1e-6 m on a 0.1 m block
+            "y": [float(f"{v:.5g}") for v in y[damaged]],
             "panels": {k: [int(round(v)) for v in values[damaged]] for k, values in lost.items()}}
 
 

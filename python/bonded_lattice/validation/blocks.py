@@ -156,7 +156,7 @@ def doc_series(data: dict, ctx: DocContext) -> list[str]:
                       f"{pct(outer)} with the outer one."]
         sizes = [r for r in rows if r["n"] > 2]
         e_max = max(abs(r["elastic"]["relative_error"]["E"]) for r in sizes)
-        L += ["", f"E is within {pct(e_max)} of the formula at every multi-unit size.  The "
+        L += ["", f"E is within {100 * e_max:.2f}% of the formula at every multi-unit size.  The "
               "all-particle lateral fit of Poisson's ratio carries a free-face deficit that "
               "falls as 1/N (fit below); the mid-height gauges measure the interior.",
               "", _free_face_fit(dim, sizes)]

@@ -31,7 +31,7 @@ from .geometry import section_factor
 from .runner import Validation, rock_for
 from .section import Section
 
-__all__ = ["LADDER", "LADDER_SIZES", "RUNGS"]
+__all__ = ["LADDER", "LADDER_SIZES", "RUNGS", "change", "rung_errors"]
 
 LADDER_SIZES = {2: [4, 8, 15, 30], 3: [4, 6, 8]}
 # above these sizes only the papers' set-up, constant loading and the defaults are run (the
@@ -97,6 +97,11 @@ def rung_errors(row: dict) -> dict[str, float]:
     return errs
 
 
+def change(errs: list[dict[str, float]], rung: str) -> float:
+    """The mean move of ``rung`` from the papers' set-up, over the rows that have it."""
+    return float(np.mean([e[rung] - e["paper"] for e in errs if rung in e]))
+
+
 def doc_ladder(data: dict, ctx: DocContext) -> list[str]:
     L = ["## Like for like: the papers' set-up, then one choice at a time", "",
          "Strength errors against the formulas.  'Papers' set-up': the stepwise schedule "
@@ -138,8 +143,8 @@ def _moves(dim: str, rows: list[dict], present: list[str], labels: dict[str, str
         if not sel:
             continue
         base = float(np.mean([e["paper"] for e in sel]))
-        moves = ", ".join(f"{labels[c]} {100 * (np.mean([e[c] for e in sel]) - base):+.2f}"
-                          for c in present if c != "paper" and c in sel[0])
+        moves = ", ".join(f"{labels[c]} {100 * change(sel, c):+.2f}"
+                          for c in present if c != "paper" and any(c in e for e in sel))
         parts.append(f"{key}: papers' set-up {pct(base)} on average over these multi-unit "
                      f"sizes (the paper's mean over its sizes {paper_pct(f'{dim}d.multi.{key}')}); "
                      f"each change moves it by (percentage points) {moves}")
@@ -157,9 +162,9 @@ def _ladder_png(ctx: DocContext, data: dict) -> None:
             errs = [rung_errors(r) for r in rows]
             for c in ("paper", "outer_area", "constant", "damping_0.25", "damping_0.1",
                       "platens_1", "layers", "defaults"):
-                if c in errs[0]:
-                    ax.semilogx(particles, [100 * e[c] for e in errs], "o-", ms=4,
-                                label=c.replace("_", " "))
+                pts = [(p, 100 * e[c]) for p, e in zip(particles, errs) if c in e]
+                if pts:
+                    ax.semilogx(*zip(*pts), "o-", ms=4, label=c.replace("_", " "))
             ax.axhline(0, color="k", lw=0.8)
             ax.set_title(f"{dim}D {TESTS[test]}", fontsize=10)
             ax.set_xlabel("particles" if dim == "2" else "elements")

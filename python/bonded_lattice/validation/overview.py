@@ -12,13 +12,16 @@ import numpy as np
 
 from .doc import pct
 from .geometry import section_factor
-from .ladder import rung_errors
+from .ladder import RUNGS, change, rung_errors
 from .papers import PAPER
 from .results import section_data
 
 __all__ = ["overview_lines"]
 
 TESTS = {"Tu": "tension", "Cu": "compression"}
+RUNG_LABELS = {"outer_area": "outer area", **{k: v[0] for k, v in RUNGS.items()}}
+RUNG_ORDER = ("outer_area", "constant", "damping_0.25", "damping_0.1", "platens_1", "layers",
+              "defaults")
 
 
 def overview_lines(results: dict) -> list[str]:
@@ -85,9 +88,8 @@ def _ladder_rows(results: dict) -> list[tuple[str, str, str, str, str]]:
                               "match the stepwise schedule)")
             defaults = _mean([r[default_key]["relative_error"][key] for r in ser])
             paper = PAPER[f"{dim}d.multi.{key}"].value
-            base = _mean([e["paper"] for e in errs])
-            moves = ", ".join(f"{c.replace('_', ' ')} {100 * (_mean([e[c] for e in errs]) - base):+.1f}"
-                              for c in errs[0] if c != "paper")
+            rungs = [c for c in RUNG_ORDER if any(c in e for e in errs)]
+            moves = ", ".join(f"{RUNG_LABELS[c]} {100 * change(errs, c):+.1f}" for c in rungs)
             rows.append((f"{dim}D multi-unit mean, {key}", pct(paper), setup_text,
                          f"{pct(defaults)} ({sizes})",
                          f"gap {100 * (setup - paper):+.1f} points; one change at a time from "
