@@ -8,6 +8,7 @@ from .compression_curve import COMPRESSION_CURVE, COMPRESSION_CURVE_3D
 from .elastic_strain import ELASTIC_STRAIN
 from .energy import ENERGY
 from .friction import CALIBRATION, ENVELOPE
+from .grips import GRIPS
 from .ladder import LADDER
 from .loading import LOADING_3D
 from .maps import FAILURE_MAP
@@ -17,7 +18,7 @@ from .section import Section
 
 __all__ = ["SECTIONS", "section_names"]
 
-SECTIONS: list[Section] = [UNITS, SERIES, LADDER, PLATENS, LOADING_3D, FAILURE_MAP, COMPRESSION_CURVE,
+SECTIONS: list[Section] = [UNITS, SERIES, LADDER, PLATENS, GRIPS, LOADING_3D, FAILURE_MAP, COMPRESSION_CURVE,
                            COMPRESSION_CURVE_3D, ELASTIC_STRAIN, SCHEDULE, ENERGY, ENVELOPE,
                            CALIBRATION, ANISOTROPY]
 
