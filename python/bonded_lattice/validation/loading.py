@@ -84,10 +84,7 @@ def _offset(row: dict, crossings: float, damping: float) -> float:
 
 def by_gap(row: dict, damping: float) -> float:
     """Cu error at the slowest constant loading of ``damping`` minus the stepwise one."""
-    slowest = max((r for r in row["constant"] if r["damping"] == damping),
-                  key=lambda r: r["crossings"])
-    return (slowest["run"]["relative_error"]["Cu"]
-            - row["stepwise"]["relative_error"]["Cu"])
+    return _offset(row, max(CROSSINGS), damping)
 
 
 def _png(ctx: DocContext, rows: list[dict]) -> None:

@@ -13,13 +13,12 @@ from .ladder import LADDER
 from .loading import LOADING_3D
 from .maps import FAILURE_MAP
 from .platens import PLATENS
-from .schedule import SCHEDULE
 from .section import Section
 
 __all__ = ["SECTIONS", "section_names"]
 
 SECTIONS: list[Section] = [UNITS, SERIES, LADDER, PLATENS, GRIPS, LOADING_3D, FAILURE_MAP, COMPRESSION_CURVE,
-                           COMPRESSION_CURVE_3D, ELASTIC_STRAIN, SCHEDULE, ENERGY, ENVELOPE,
+                           COMPRESSION_CURVE_3D, ELASTIC_STRAIN, ENERGY, ENVELOPE,
                            CALIBRATION, ANISOTROPY]
 
 
