@@ -43,7 +43,8 @@ def paper_pct(key: str, digits: int = 2) -> str:
 
 def write_doc(results: dict, doc: Path, sections: list) -> None:
     """docs/validation.md (and its figures) from ``results``, section by section."""
-    from .overview import overview_lines   # it reads the sections' data
+    from .checks import check_lines        # they read the sections' data
+    from .overview import overview_lines
 
     ctx = DocContext(doc)
     entries = results["sections"]
@@ -58,6 +59,7 @@ def write_doc(results: dict, doc: Path, sections: list) -> None:
              "minus formula, relative.  The papers' values and where they state them are in "
              "`bonded_lattice/validation/papers.py`.", ""]
     lines += overview_lines(results)
+    lines += check_lines(results)
     for section in sections:
         entry = entries.get(section.name)
         if entry is None:

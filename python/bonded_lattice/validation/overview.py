@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .checks import papers_setup_mean
 from .doc import pct
 from .geometry import section_factor
 from .ladder import RUNGS, change, rung_errors
@@ -69,23 +70,11 @@ def _ladder_rows(results: dict) -> list[tuple[str, str, str, str, str]]:
         for key, test in TESTS.items():
             lad = [r for r in ladder[dim] if r["test"] == test and r["n"] > 2]
             errs = [rung_errors(r) for r in lad]
-            shift = _mean([e["paper"] - e["constant"] for e in errs])
-            default_key = f"{test}_defaults" if dim == "2" else test
             ser = [r for r in series[dim] if r["n"] > 2]
             sizes = f"{size} = {min(r['n'] for r in ser)}-{max(r['n'] for r in ser)}"
-            # the papers' sizes under constant loading at the papers' damping, moved by the
-            # stepwise schedule's shift measured on the ladder's sizes
-            setup = _mean([r[test]["relative_error"][key] for r in ser]) + shift
-            setup_text = (f"{pct(setup)} ({sizes}; constant loading at the papers' damping "
-                          f"{100 * shift:+.1f} points, the stepwise schedule's shift on "
-                          f"{size} = {min(r['n'] for r in lad)}-{max(r['n'] for r in lad)})")
-            slow = [r for r in ser if "compression_slow" in r] if test == "compression" else []
-            if dim == "3" and slow:
-                # 3D compression: the series' slow loading, converged on the stepwise schedule
-                setup = _mean([r["compression_slow"]["relative_error"][key] for r in slow])
-                setup_text = (f"{pct(setup)} ({size} = {min(r['n'] for r in slow)}-"
-                              f"{max(r['n'] for r in slow)}, constant loading slow enough to "
-                              "match the stepwise schedule)")
+            setup, how = papers_setup_mean(results, dim, key)
+            setup_text = f"{pct(setup)} ({how})"
+            default_key = f"{test}_defaults" if dim == "2" else test
             defaults = _mean([r[default_key]["relative_error"][key] for r in ser])
             paper = PAPER[f"{dim}d.multi.{key}"].value
             rungs = [c for c in RUNG_ORDER if any(c in e for e in errs)]
