@@ -118,6 +118,24 @@ def target_strain(rock: Rock, test: str, confining: float = 0.0,
             "confined": confined_strength(rock, confining) / rock.E}[test]
 
 
+def plan_changes(stored: dict, now: dict, rel: float = 1e-9) -> str:
+    """How a stored run's plan (``summary.json``'s ``plan``) differs from ``now``: the keys
+    whose values differ (numbers beyond ``rel``), as 'key stored -> now', comma-separated;
+    '' if none does.  Keys the stored plan lacks (older summaries) are not compared."""
+    diffs = []
+    for key, value in now.items():
+        if key not in stored:
+            continue
+        old = stored[key]
+        if isinstance(value, (int, float)) and isinstance(old, (int, float)):
+            same = math.isclose(old, value, rel_tol=rel, abs_tol=0.0)
+        else:
+            same = old == value
+        if not same:
+            diffs.append(f"{key} {old!r} -> {value!r}")
+    return ", ".join(diffs)
+
+
 def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
               crossings: float | None = None, speed: float | None = None,
               confining: float = 0.0, schedule: str = "constant",
@@ -381,6 +399,20 @@ class RockTest(Study):
         self.lattice = test_lattice(self.dim, self.n, self.d, self.test, self.orientation)
         self.plan = plan_test(self.rock, self.bond, self.lattice, self.test, **self.plan_options)
         self.ends = choose_ends(self.lattice, self.test, self.ends_choice)
+
+    def _accept_stored(self, stored: dict) -> dict | None:
+        """The stored summary if it was made with the plan this test makes now (loading,
+        damping, time step, steps); None, so that the test runs again, if its options or the
+        package's defaults have changed since (a reused run must not carry old settings into
+        new results)."""
+        self._plan()
+        changed = plan_changes(stored.get("plan", {}), asdict(self.plan))
+        if changed:
+            if self.progress:
+                print(f"{self.out}: stored run made with another plan ({changed}); running "
+                      "it again", flush=True)
+            return None
+        return stored
 
     def _write(self) -> Path:
         plan = self.plan
