@@ -411,12 +411,15 @@ variable        s0 equal $(step)
         move_bot = f"linear {_vector(ax, f'{-sign * spec.speed:.6g}', lateral)}"
         variables = ""
     else:
+        # clamped: zero displacement across the load (z stays NULL in 2D, as fix move needs)
         fixed = "v_zero" if spec.grips == "clamped" else "NULL"
         variables = (f"variable        dtop equal {sign * spec.step_size:.6g}*ceil((step-v_s0)/{spec.relax_steps})\n"
                      f"variable        dbot equal -v_dtop\n"
                      + ("variable        zero equal 0\n" if spec.grips == "clamped" else ""))
-        move_top = f"variable {_vector(ax, 'v_dtop', fixed)} NULL NULL NULL"
-        move_bot = f"variable {_vector(ax, 'v_dbot', fixed)} NULL NULL NULL"
+        slots = {a: fixed for a in spec.lateral_axes}
+        move_top, move_bot = (
+            "variable " + " ".join(slots.get(a, var if a == ax else "NULL") for a in "xyz")
+            + " NULL NULL NULL" for var in ("v_dtop", "v_dbot"))
     how = ("sideways they stay where they are (clamped)" if spec.grips == "clamped"
            else "sideways they move freely with the block")
     return text + f"""# the end layers (centres within 0.6 d of the ends: the outermost row, or both

@@ -53,7 +53,14 @@ def test_the_deck_writes_each_grip():
     assert "fix             ptop top move linear 0 0.01 0\n" in deck_text(spec(grips="clamped"))
     stepped = deck_text(spec(grips="clamped", schedule="stepwise", step_size=1e-9,
                              relax_steps=100))
-    assert "fix             ptop top move variable v_zero v_dtop v_zero NULL NULL NULL\n" in stepped
+    # 2D: fix move takes no z displacement
+    assert "fix             ptop top move variable v_zero v_dtop NULL NULL NULL NULL\n" in stepped
+    stepped_3d = deck_text(spec(grips="clamped", schedule="stepwise", step_size=1e-9,
+                                relax_steps=100, dim=3))
+    assert "fix             pbot bottom move variable v_zero v_zero v_dbot NULL NULL NULL\n" in stepped_3d
+    # held: free sideways
+    assert ("fix             ptop top move variable NULL v_dtop NULL NULL NULL NULL\n"
+            in deck_text(spec(schedule="stepwise", step_size=1e-9, relax_steps=100)))
     # springs of wall_kn on every end particle, the plane moving 0.01 m/s x 2e-8 s per step
     springs = deck_text(spec(grips="springs", wall_kn=3e10))
     assert "fix             ptop" not in springs
