@@ -72,7 +72,8 @@ def cmd_generate(args: argparse.Namespace) -> int:
                          has_mid_height(lattice), args.energy, args.shear_frame, pair,
                          atom_style=args.atom_style,
                          ends=choose_ends(lattice, args.test, args.ends),
-                         wall_kn=check_platen_stiffness(args.platen_stiffness) * bond.Kn),
+                         wall_kn=check_platen_stiffness(args.platen_stiffness) * bond.Kn,
+                         grips=args.grips),
                out / f"in.{args.test}")
     print(f"wrote {out / 'data.lattice'} ({lattice.n} particles) and {out / ('in.' + args.test)}")
     if grain is not None:
@@ -92,7 +93,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                        orientation=args.orientation, energy=args.energy,
                        shear_frame=args.shear_frame, atom_style=args.atom_style,
                        ends=args.ends, platen_stiffness=args.platen_stiffness,
-                       **plan_options(args))
+                       grips=args.grips, **plan_options(args))
     print(summary_table(summary))
     if summary["energy"]:
         e = summary["energy"]

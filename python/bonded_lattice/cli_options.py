@@ -25,7 +25,7 @@ import inspect
 from dataclasses import MISSING, dataclass, field, fields
 from typing import Any, Callable
 
-from .decks import ELASTIC_LOADS, SHEAR_FRAMES, TESTS
+from .decks import ELASTIC_LOADS, GRIPS, SHEAR_FRAMES, TESTS
 from .experiment import END_CHOICES, plan_test, run_test
 from .grains import GrainModel, GrainPairOptions
 from .lattice import ATOM_STYLES
@@ -152,6 +152,11 @@ def test_options(p: argparse.ArgumentParser, test: bool = True, choose_test: boo
                        "%(default)g; 0 < value <= 20): a block's compressive deficit grows as "
                        "they soften (docs/validation.md, 'The platens decide the compressive "
                        "deficit')")
+        p.add_argument("--grips", choices=GRIPS, default=lib["grips"],
+                       help="how a test that loads through the end layers (tension, --ends "
+                       "layers) grips them: held (default: axial motion prescribed, free "
+                       "sideways), clamped (lateral motion fixed too) or springs (tied to moving "
+                       "smooth planes by axial springs of --platen-stiffness x Kn)")
     if not test:
         return
     add(p, "n", TEST_DEFAULTS["n"], help="particles across (2D) or elements along y (3D); "

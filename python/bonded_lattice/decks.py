@@ -5,7 +5,9 @@ and loads the block along its loading axis (y in 2D, z in 3D):
 
 - ``tension``: the top and bottom layers of particles are held by smooth
   planes (free to slide sideways) that move apart at ``speed`` — the papers'
-  "bonded smooth planes";
+  "bonded smooth planes"; ``grips`` (:data:`GRIPS`) can clamp them sideways too, or tie
+  them to the moving planes by axial springs of ``wall_kn`` instead of prescribing their
+  motion;
 - ``compression``: two smooth platens (``fix lattice/wall``, ``mu 0``) move
   toward each other at ``speed``; with ``ends="layers"`` (stepped ends, e.g. a
   rotated 2D lattice, where platens would touch a few particles only) the end
@@ -59,6 +61,7 @@ from typing import TextIO
 from .conversion import BondParameters
 from .deck import (ATOM_DUMP_COLUMNS, BOND_COUNTS, PairStyle, atom_bond_counts, bond_counts,
                    energy_budget, integrator, opening, smooth_wall, thermo)
+from .deck.grips import grip_title, spring_grips
 from .deck.pair import SHEAR_FRAMES
 from .grains import GrainPairOptions
 from .lattice import check_atom_style
@@ -69,6 +72,12 @@ TESTS = ("tension", "compression", "elastic", "confined", "periodic")
 ENDS = ("platens", "layers")
 # how the elastic test loads: platens (compression) or end layers pulled apart (tension)
 ELASTIC_LOADS = ("compression", "tension")
+# how the end layers are gripped when a deck loads through them (DeckSpec.grips): "held" (their
+# axial motion prescribed, free sideways: smooth planes holding them), "clamped" (their lateral
+# motion fixed too) or "springs" (each end particle tied to a moving smooth plane by an axial
+# spring of stiffness wall_kn, free sideways: the 2013 paper's "lattice bonded by two smooth
+# planes", para. 42, with a compliance like that of its platens)
+GRIPS = ("held", "clamped", "springs")
 # the per-step log of a deck with the energy budget (read by io.read_ave_time): every term
 # the 2017 paper's Fig. 6c/d heat curves and insets need, at every time step of a window
 # around the failure -- the breaking heat of the normal and of the shear springs (compute
@@ -131,6 +140,10 @@ class DeckSpec:
     # touch at a few particles only, e.g. a rotated 2D lattice)
     ends: str = "platens"
     elastic_load: str = "compression"  # elastic test: one of ELASTIC_LOADS
+    # how the end layers are gripped when the deck loads through them (tension, an elastic
+    # test in tension, ends = "layers"): one of GRIPS; "springs" ties them to the moving planes
+    # by springs of wall_kn (default 2 Kn, the platens' default)
+    grips: str = "held"
 
     def __post_init__(self) -> None:
         if self.test not in TESTS:
@@ -154,6 +167,16 @@ class DeckSpec:
         if self.elastic_load != "compression" and self.test != "elastic":
             raise ValueError(f"elastic_load = {self.elastic_load!r} is for the elastic test "
                              f"only (test = {self.test!r})")
+        if self.grips not in GRIPS:
+            raise ValueError(f"grips = {self.grips!r} is not known: use one of {', '.join(GRIPS)}")
+        if self.grips != "held" and not self.held_ends:
+            raise ValueError(f"grips = {self.grips!r} is for decks that load through the end "
+                             f"layers (tension, elastic_load 'tension', ends 'layers'); test = "
+                             f"{self.test!r}, ends = {self.ends!r} uses platens")
+        if self.grips == "springs" and self.energy:
+            raise ValueError("grips = 'springs': the grip springs' work and energy are not in "
+                             "compute lattice/energy's budget; use grips 'held' or 'clamped' "
+                             "with energy")
         if self.schedule not in SCHEDULES:
             raise ValueError(f"schedule = {self.schedule!r} is not known: use one of "
                              f"{', '.join(SCHEDULES)}")
@@ -213,6 +236,16 @@ class DeckSpec:
                                           and self.elastic_load == "tension")
 
     @property
+    def held_ends(self) -> bool:
+        """Whether the deck loads the block through its end layers (not platens)."""
+        return self.test != "periodic" and (self.pulls or self.ends == "layers")
+
+    @property
+    def grip_kn(self) -> float:
+        """Stiffness of each grip spring (N/m): wall_kn, default 2 Kn as the platens'."""
+        return self.wall_kn if self.wall_kn is not None else 2.0 * self.bond.Kn
+
+    @property
     def lateral_axes(self) -> tuple[str, ...]:
         """The axes across the load: x in 2D, x and y in 3D."""
         return ("x",) if self.dim == 2 else ("x", "y")
@@ -245,6 +278,8 @@ def _header(spec: DeckSpec) -> str:
         "confined": f"Confined compression: platens plus side walls holding {spec.confining:g} Pa",
         "periodic": "Uniaxial tension of a periodic cell: no platens, no free surfaces",
     }[spec.test]
+    if spec.test == "tension" and spec.grips != "held":
+        title = f"Uniaxial tension, the {grip_title(spec.grips, spec.grip_kn)}"
     if spec.ends == "layers" and not spec.pulls:
         held = "smooth planes holding the end layers (stepped ends)"
         title = {"compression": f"Uniaxial compression between two {held}",
@@ -344,28 +379,17 @@ def _vector(axis: str, value: str, other: str = "0") -> str:
 def _end_layers(spec: DeckSpec) -> str:
     """Loading through the end layers: the particles whose centres lie within 0.6 d of either
     end (the outermost row or layer, or the staggered particles of a rotated lattice's
-    stepped end) are held by smooth planes: their axial motion is prescribed (apart in
-    tension, together otherwise), sideways they move freely with the block."""
+    stepped end), gripped as ``spec.grips`` says (:data:`GRIPS`), moved apart in tension and
+    together otherwise."""
     ax, d = spec.axis, spec.d
     sign = 1.0 if spec.pulls else -1.0
     way = "apart" if sign > 0 else "together"
     if spec.schedule == "constant":
-        title = f"end layers moving {way} at {spec.speed:g} m/s"
-        move_top = f"linear {_vector(ax, f'{sign * spec.speed:.6g}', 'NULL')}"
-        move_bot = f"linear {_vector(ax, f'{-sign * spec.speed:.6g}', 'NULL')}"
-        variables = ""
+        motion = f"moving {way} at {spec.speed:g} m/s"
     else:
-        title = (f"end layers jumping {way} by {spec.step_size:g} m every "
-                 f"{spec.relax_steps} steps")
-        variables = (f"variable        dtop equal {sign * spec.step_size:.6g}*ceil((step-v_s0)/{spec.relax_steps})\n"
-                     f"variable        dbot equal -v_dtop\n")
-        move_top = f"variable {_vector(ax, 'v_dtop', 'NULL')} NULL NULL NULL"
-        move_bot = f"variable {_vector(ax, 'v_dbot', 'NULL')} NULL NULL NULL"
-    return f"""
-# ---- loading: {title} ----
-# the end layers (centres within 0.6 d of the ends: the outermost row, or both
-# staggered rows of a rotated lattice) are held by smooth planes: only their axial motion is
-# prescribed (fix move); sideways they move freely with the block
+        motion = f"jumping {way} by {spec.step_size:g} m every {spec.relax_steps} steps"
+    text = f"""
+# ---- loading: {grip_title(spec.grips, spec.grip_kn)}, {motion} ----
 region          toplayer block {_slab(ax, f"$(v_hi0-{0.6 * d!r})", "INF")} units box
 region          botlayer block {_slab(ax, "INF", f"$(v_lo0+{0.6 * d!r})")} units box
 group           top region toplayer
@@ -373,6 +397,34 @@ group           bottom region botlayer
 group           inner subtract all top bottom
 velocity        all set 0 0 0 units box
 variable        s0 equal $(step)
+"""
+    if spec.grips == "springs":
+        plane = (f"{sign * spec.speed * spec.dt:.8g}*(step-v_s0)" if spec.schedule == "constant"
+                 else f"{sign * spec.step_size:.6g}*ceil((step-v_s0)/{spec.relax_steps})")
+        speed = sign * spec.speed if spec.schedule == "constant" else 0.0
+        return text + spring_grips(ax, plane, spec.grip_kn, spec.eta, spec.area, speed)
+    # held or clamped: the end layers' motion prescribed (fix move); sideways free (NULL,
+    # integrated with the forces on them) or fixed (0)
+    lateral = "0" if spec.grips == "clamped" else "NULL"
+    if spec.schedule == "constant":
+        move_top = f"linear {_vector(ax, f'{sign * spec.speed:.6g}', lateral)}"
+        move_bot = f"linear {_vector(ax, f'{-sign * spec.speed:.6g}', lateral)}"
+        variables = ""
+    else:
+        # clamped: zero displacement across the load (z stays NULL in 2D, as fix move needs)
+        fixed = "v_zero" if spec.grips == "clamped" else "NULL"
+        variables = (f"variable        dtop equal {sign * spec.step_size:.6g}*ceil((step-v_s0)/{spec.relax_steps})\n"
+                     f"variable        dbot equal -v_dtop\n"
+                     + ("variable        zero equal 0\n" if spec.grips == "clamped" else ""))
+        slots = {a: fixed for a in spec.lateral_axes}
+        move_top, move_bot = (
+            "variable " + " ".join(slots.get(a, var if a == ax else "NULL") for a in "xyz")
+            + " NULL NULL NULL" for var in ("v_dtop", "v_dbot"))
+    how = ("sideways they stay where they are (clamped)" if spec.grips == "clamped"
+           else "sideways they move freely with the block")
+    return text + f"""# the end layers (centres within 0.6 d of the ends: the outermost row, or both
+# staggered rows of a rotated lattice): their axial motion is prescribed (fix move);
+# {how}
 {variables}fix             ptop top move {move_top}
 fix             pbot bottom move {move_bot}
 {integrator("inner", spec.eta)}# stress (tension positive) from the force the block exerts on the end layers
@@ -465,7 +517,7 @@ variable        failed equal (v_smag<{spec.halt_fraction:g}*max(f_peaklog))&&(ma
     if spec.energy:
         # after the fixes that add forces, as compute lattice/energy requires; the
         # end layers' prescribed motion does external work in tension
-        layers = spec.pulls or spec.ends == "layers"
+        layers = spec.held_ends
         energy, columns = energy_budget("top bottom" if layers else "")
     table = thermo(f"step time v_strain v_lateral v_gauge v_stress {BOND_COUNTS} ke{columns}",
                    spec.thermo_every, flush=True)

@@ -24,7 +24,8 @@ from .conversion import (
     paper_damping_3d,
     rock_to_bond,
 )
-from .decks import BREAKING_COLUMNS, BREAKING_LOG, ELASTIC_LOADS, ENDS, DeckSpec, write_deck
+from .decks import (BREAKING_COLUMNS, BREAKING_LOG, ELASTIC_LOADS, ENDS, GRIPS, DeckSpec,
+                    write_deck)
 from .grains import GrainPairOptions
 from .io.ave_time import read_ave_time
 from .lattice import (Lattice, close_packed_block_3d, hex_block_2d, turned_block_3d,
@@ -314,6 +315,13 @@ def check_platen_stiffness(value: float) -> float:
     return value
 
 
+def check_grips(grips: str) -> str:
+    """``grips`` if one of :data:`bonded_lattice.decks.GRIPS`; else a ValueError naming it."""
+    if grips not in GRIPS:
+        raise ValueError(f"grips = {grips!r} is not known: use one of {', '.join(GRIPS)}")
+    return grips
+
+
 def has_mid_height(lattice: Lattice) -> bool:
     """Whether particles lie in the middle half of the height (for the lateral gauges)."""
     h = lattice.positions[:, lattice.axis]
@@ -326,21 +334,24 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
               energy: bool = False, shear_frame: str = "fixed",
               grains: GrainPairOptions | None = None,
               atom_style: str = "atomic", ends: str = "platens",
-              wall_kn: float | None = None, halt_fraction: float | None = None) -> DeckSpec:
+              wall_kn: float | None = None, halt_fraction: float | None = None,
+              grips: str = "held") -> DeckSpec:
     """The deck of a planned run (reads ``data.lattice`` beside it).
 
     grains: the pair style's grain keywords of a heterogeneous block, whose
     data file has a Grains section (:func:`bonded_lattice.grains.grain_arrays`).
     atom_style: that of the data file (:func:`bonded_lattice.lattice.write_data`).
     ends: ``platens`` or ``layers`` (:func:`choose_ends`).
-    wall_kn: the platens' spring stiffness (N/m; default 2 Kn).
+    wall_kn: the platens' spring stiffness, or the grip springs' (N/m; default 2 Kn).
+    grips: how the end layers are gripped when the test loads through them
+    (:data:`bonded_lattice.decks.GRIPS`).
     halt_fraction: a strength test stops once |stress| falls below this fraction of its
     peak (0: never; None: DeckSpec's default).
     """
     halt = {} if halt_fraction is None else {"halt_fraction": halt_fraction}
     return DeckSpec(gauges=gauges, energy=energy, shear_frame=shear_frame, grains=grains,
                     halt_delay=int(math.ceil(ENERGY_AFTERMATH / plan.dt)) if energy else 0,
-                    atom_style=atom_style, ends=ends, wall_kn=wall_kn,
+                    atom_style=atom_style, ends=ends, wall_kn=wall_kn, grips=grips,
                     test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
                     area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps,
                     dt=plan.dt, thermo_every=plan.thermo_every, confining=confining,
@@ -372,10 +383,11 @@ class RockTest(Study):
                  dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
                  shear_frame: str = "fixed", atom_style: str = "atomic",
                  pictures: bool = True, ends: str = "auto", platen_stiffness: float = 2.0,
-                 halt_fraction: float | None = None,
+                 halt_fraction: float | None = None, grips: str = "held",
                  **plan_options) -> None:
         super().__init__(out, np_=np_, progress=progress, pictures=pictures)
         self.platen_stiffness = check_platen_stiffness(platen_stiffness)
+        self.grips = check_grips(grips)
         self.rock, self.dim, self.test, self.n, self.d = rock, dim, test, n, d
         self.bond = bond
         self.dump_every = dump_every
@@ -425,7 +437,7 @@ class RockTest(Study):
                               self.dump_every, has_mid_height(self.lattice), self.energy,
                               self.shear_frame, atom_style=self.atom_style, ends=self.ends,
                               wall_kn=self.platen_stiffness * self.bond.Kn,
-                              halt_fraction=self.halt_fraction)
+                              halt_fraction=self.halt_fraction, grips=self.grips)
         write_deck(self.spec, deck)
         return deck
 
@@ -486,6 +498,7 @@ class RockTest(Study):
             "ends": (None if self.test == "periodic" else
                      "layers" if self.spec.pulls else self.ends),
             "platen_stiffness": self.platen_stiffness,
+            "grips": self.grips if self.spec.held_ends else None,
             "ranks": self.np_,
             "plan": asdict(plan),
             "bond": asdict(self.bond),
@@ -508,7 +521,7 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
              dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
              shear_frame: str = "fixed", atom_style: str = "atomic", ends: str = "auto",
              platen_stiffness: float = 2.0, halt_fraction: float | None = None,
-             **plan_options) -> dict:
+             grips: str = "held", **plan_options) -> dict:
     """Run one test end to end (:class:`RockTest`) and return the summary (also written to
     summary.json).
 
@@ -522,7 +535,11 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
 
     bond: bond parameters to use instead of the rock's converted ones (calibration);
         the targets stay the rock's properties.
-    platen_stiffness: the platens' springs as a multiple of Kn (0 < value <= 20).
+    platen_stiffness: the platens' springs as a multiple of Kn (0 < value <= 20); with
+        ``grips="springs"`` the grip springs'.
+    grips: how a test loading through its end layers grips them: ``held`` (axial motion
+        prescribed, free sideways), ``clamped`` (lateral motion fixed too) or ``springs``
+        (tied to moving planes by axial springs; :data:`bonded_lattice.decks.GRIPS`).
     halt_fraction: a strength test stops once |stress| falls below this fraction of its
         peak (0: runs its planned steps; None: the decks' default,
         :class:`bonded_lattice.decks.DeckSpec`).
@@ -534,7 +551,7 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
                     dump_every=dump_every, orientation=orientation, energy=energy,
                     shear_frame=shear_frame, atom_style=atom_style, ends=ends,
                     platen_stiffness=platen_stiffness, halt_fraction=halt_fraction,
-                    **plan_options).run()
+                    grips=grips, **plan_options).run()
 
 
 ENERGY_NAMES = ("elastic", "kinetic", "gravitational", "viscous_heat", "breaking_heat_normal",

@@ -12,6 +12,8 @@ Each section is a function that returns deck text (whole lines, each ending in a
 - :mod:`.integrator`: ``fix lattice/nve`` and the damping ``fix lattice/viscous``;
 - :mod:`.walls`: smooth platens and side walls (``fix lattice/wall``, moving or servo),
   and the rows of wall particles held by ``fix setforce`` (the scenes' deformation box);
+- :mod:`.grips`: the end layers' spring grips (``fix addforce`` towards moving smooth planes)
+  and the grips' names in a deck's comments;
 - :mod:`.outputs`: the bond counts (``compute lattice/bonds``), the per-atom and per-bond
   records and their dumps, the energy budget (``compute lattice/energy``), thermo.
 

@@ -13,6 +13,7 @@ import numpy as np
 from .checks import papers_setup_mean
 from .doc import pct
 from .geometry import section_factor
+from .grips import GRIP_VARIANTS, grip_label, grip_means
 from .ladder import RUNGS, change, rung_errors
 from .papers import PAPER
 from .results import section_data
@@ -83,10 +84,12 @@ def _ladder_rows(results: dict) -> list[tuple[str, str, str, str, str]]:
             cell = (f"; a periodic cell (no grips, no free faces) gives "
                     f"{pct(_mean([r['periodic']['relative_error']['Tu'] for r in grips[dim]]))}"
                     if grips is not None and key == "Tu" else "")
+            other = (_grip_text(grips[dim], paper, setup) if grips is not None and key == "Tu"
+                     else "")
             rows.append((f"{dim}D multi-unit mean, {key}", pct(paper), setup_text,
                          f"{pct(defaults)} ({sizes})",
                          f"gap {100 * (setup - paper):+.1f} points; one change at a time from "
-                         f"the papers' set-up moves ours by: {moves}{cell}"))
+                         f"the papers' set-up moves ours by: {moves}{cell}{other}"))
         if dim == "2":
             n30 = next((r for r in ladder[dim] if r["n"] == 30 and r["test"] == "tension"), None)
             s30 = next((r for r in series[dim] if r["n"] == 30), None)
@@ -99,10 +102,38 @@ def _ladder_rows(results: dict) -> list[tuple[str, str, str, str, str]]:
                            f"{pct(g30['periodic']['relative_error']['Tu'])}: the paper's value "
                            "lies between our held end layers and no grips at all; the paper "
                            "does not say how it pulled its blocks" if g30 else "")
+                other = _grip_text(grips["2"], paper, ours, 30) if g30 else ""
                 rows.append(("2D Tu, 1033 particles (N = 30)", pct(paper), pct(ours),
                              pct(s30["tension_defaults"]["relative_error"]["Tu"]),
-                             f"gap {100 * (ours - paper):+.1f} points{bracket}"))
+                             f"gap {100 * (ours - paper):+.1f} points{bracket}{other}"))
     return rows
+
+
+def _grip_text(rows: list[dict], paper: float, ours: float, n: int | None = None) -> str:
+    """What the other grips of section 'grips' do to ``ours`` (the held end layers' Tu error)
+    against the paper's ``paper``: each grip's shift from the held end layers (mean over the
+    section's sizes, or at size ``n``) added to ``ours``, and the grip that brings it closest
+    ('' without the variants' data)."""
+    if not all("variants" in r for r in rows):
+        return ""
+    if n is None:
+        errors = grip_means(rows)
+    else:
+        row = next(r for r in rows if r["n"] == n)
+        errors = {"held": row["held"]["relative_error"]["Tu"],
+                  **{k: row["variants"][k]["relative_error"]["Tu"] for k in GRIP_VARIANTS}}
+    shifts = {k: e - errors["held"] for k, e in errors.items()}
+    best = min(shifts, key=lambda k: abs(ours + shifts[k] - paper))
+    sizes = (f"N = {n}" if n is not None else
+             f"{'N' if rows[0]['held']['dim'] == 2 else 'n_y'} = "
+             + ", ".join(str(r["n"]) for r in rows))
+    moves = ", ".join(f"{grip_label(k)} {100 * shifts[k]:+.1f}" for k in GRIP_VARIANTS)
+    text = f"; other grips move ours by ({sizes}, section 'grips'): {moves}"
+    if best == "held":
+        return text + ("; none brings ours closer to the paper than the held end layers: the "
+                       "grips do not explain the gap")
+    return (text + f"; the {grip_label(best)} bring ours closest, to "
+            f"{pct(ours + shifts[best])} (gap {100 * (ours + shifts[best] - paper):+.1f} points)")
 
 
 def _elastic_rows(results: dict) -> list[tuple[str, str, str, str, str]]:
@@ -115,10 +146,22 @@ def _elastic_rows(results: dict) -> list[tuple[str, str, str, str, str]]:
     el = row["elastic"]
     ours = el["relative_error"]["E"]
     outer = (1 + ours) * section_factor(el) - 1
+    strain = section_data(results, "platen_strain")
+    s4 = next((r for r in strain["2"] if r["n"] == 4), None) if strain is not None else None
+    by_strain = ""
+    if s4 is not None:
+        e = {f"{k:g}": s4["by_platens"][f"{k:g}"]["E"] for k in strain["stiffnesses"]}
+        ours_k = next(iter(e))     # the platens of the elastic test (2 Kn)
+        by_strain = ("; with the strain from the end rows' displacement "
+                     f"{pct(e[ours_k]['end_rows'])}, from the platens' travel over the outer "
+                     "height " + ", ".join(f"{pct(e[k]['platens_faces'])} (platens {k} Kn)"
+                                          for k in e)
+                     + f", over the centres' span {pct(e[ours_k]['platens_centres'])} (section "
+                     "'2D E by the strain's definition')")
     rows = [("2D E, 18 particles (N = 4)", f"about {pct(PAPER['2d.n4.E'].value, 0)}",
              pct(ours), pct(ours),
              f"the outer stress area would give {pct(outer)}: the paper's stresses use the "
-             "centres' span (or an area as close to it)")]
+             f"centres' span (or an area as close to it){by_strain}")]
     multi = [r["elastic"] for r in series["3"] if r["n"] > 2]
     if multi:
         e = _mean([abs(r["relative_error"]["E"]) for r in multi])

@@ -12,12 +12,13 @@ from .grips import GRIPS
 from .ladder import LADDER
 from .loading import LOADING_3D
 from .maps import FAILURE_MAP
+from .platen_strain import PLATEN_STRAIN
 from .platens import PLATENS
 from .section import Section
 
 __all__ = ["SECTIONS", "section_names"]
 
-SECTIONS: list[Section] = [UNITS, SERIES, LADDER, PLATENS, GRIPS, LOADING_3D, FAILURE_MAP, COMPRESSION_CURVE,
+SECTIONS: list[Section] = [UNITS, SERIES, LADDER, PLATENS, GRIPS, PLATEN_STRAIN, LOADING_3D, FAILURE_MAP, COMPRESSION_CURVE,
                            COMPRESSION_CURVE_3D, ELASTIC_STRAIN, ENERGY, ENVELOPE,
                            CALIBRATION, ANISOTROPY]
 
