@@ -119,13 +119,17 @@ def peak_kinetic_fraction(log: dict[str, np.ndarray], every: int = 1) -> dict:
             "step": int(step[k]), "kinetic_J": float(kinetic[k])}
 
 
-def peak_width(log: dict[str, np.ndarray], column: str, dt: float) -> float:
-    """Time (s) the largest value of ``column`` stays above half itself: the steps around
-    its maximum with at least half of it, end to end (full width at half maximum)."""
+def peak_width(log: dict[str, np.ndarray], column: str, dt: float,
+               fraction: float = 0.5) -> float:
+    """Time (s) the largest value of ``column`` stays above ``fraction`` of itself: the
+    steps around its maximum with at least that much, end to end (by default the full
+    width at half maximum).  A ValueError unless 0 < fraction < 1."""
     dt = _check_dt(dt)
+    if not 0.0 < fraction < 1.0:
+        raise ValueError(f"fraction = {fraction!r}: need 0 < fraction < 1")
     values = np.asarray(log[column], dtype=float)
     top = int(np.argmax(values))
-    above = values >= 0.5 * values[top]
+    above = values >= fraction * values[top]
     lo = top
     while lo > 0 and above[lo - 1]:
         lo -= 1

@@ -13,8 +13,8 @@ stress.  The choices that differ or that the papers leave open, each changed alo
 - the damping: a quarter of eta (our 2D default) and a tenth, under the stepwise schedule;
 - the platens: springs of the bonds' stiffness Kn instead of our 2 Kn (the papers do not state
   theirs), or none: the end layers held and moved as in tension (compression only);
-- everything ours: the package's defaults (constant loading; in 2D 50 crossings and a
-  quarter of eta, in 3D 100 crossings and eta).
+- everything ours: the package's defaults (constant loading,
+  :data:`~bonded_lattice.schedules.DEFAULT_LOADING`).
 
 The stepwise schedule costs 30 to 350 times the time steps of constant loading, so the ladder
 stops at the sizes listed in :data:`LADDER_SIZES`; the series (section ``series``) carries the
@@ -64,7 +64,7 @@ def _folder(dim: int, n: int, test: str, rung: str) -> str:
     if rung == "constant":
         return f"{dim}d/n{n}_{test}"
     if rung == "defaults":
-        return f"{dim}d/n{n}_{test}" + ("_defaults" if dim == 2 else "")
+        return f"{dim}d/n{n}_{test}_defaults"
     return f"{dim}d/paper_n{n}_{test}_{rung}"
 
 
