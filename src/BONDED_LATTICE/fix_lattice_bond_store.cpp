@@ -19,6 +19,7 @@
 #include "domain.h"
 #include "error.h"
 #include "fix_lattice_atom_history.h"
+#include "lattice_errors.h"
 #include "memory.h"
 #include "update.h"
 
@@ -233,10 +234,10 @@ int FixLatticeBondStore::add_record(int i, tagint partner_tag, LatticeBondState 
 {
   if (nrec[i] >= ncapacity) {
     if (nrec[i] >= nmaxslot)
-      error->one(FLERR,
-                 "Atom {} has more than maxslot = {} bonds and contacts; "
-                 "increase the pair_style lattice/bond keyword maxslot",
-                 atom->tag[i], nmaxslot);
+      lattice_error_one(lmp, FLERR,
+                        fmt::format("Atom {} has more than maxslot = {} bonds and contacts; "
+                                    "increase the pair_style lattice/bond keyword maxslot",
+                                    atom->tag[i], nmaxslot));
     set_capacity(std::min(nmaxslot, ncapacity + CAPACITY_STEP));
   }
   const int s = nrec[i]++;
@@ -508,10 +509,10 @@ int FixLatticeBondStore::unpack_atom(int i, const double *buf)
   int m = 0;
   const int n = (int) ubuf(buf[m++]).i;
   if (n < 0 || n > nmaxslot)
-    error->one(FLERR,
-               "Atom {} carries {} bond records but maxslot is {}; use a pair_style "
-               "lattice/bond maxslot of at least {}",
-               atom->tag[i], n, nmaxslot, n);
+    lattice_error_one(lmp, FLERR,
+                      fmt::format("Atom {} carries {} bond records but maxslot is {}; use a "
+                                  "pair_style lattice/bond maxslot of at least {}",
+                                  atom->tag[i], n, nmaxslot, n));
   if (n > ncapacity) set_capacity(std::min(nmaxslot, n + CAPACITY_STEP));
   nrec[i] = n;
   // (a 2D atom's third value stays 0: the displacements of 2D atoms have no z part)

@@ -12,6 +12,7 @@
 #include "domain.h"
 #include "error.h"
 #include "fix_lattice_bond_store.h"
+#include "lattice_errors.h"
 #include "lattice_heterogeneity.h"
 #include "lattice_time_step.h"
 #include "memory.h"
@@ -152,13 +153,15 @@ void LatticeBondRecords::create_bonds(NeighList *list, const LatticeRadii &radiu
     });
     if (pass == 0) {
       int most = 0, most_all = 0;
+      std::string full;    // the first atom with too many records on this rank
       for (int i = 0; i < nlocal; i++) {
-        if (count[i] + fix_store->record_count(i) > fix_store->maxslot())
-          error->one(FLERR, "Atom {} has more than maxslot = {} bonds and contacts ({}); increase "
-                     "the pair_style lattice/bond keyword maxslot", tag[i], fix_store->maxslot(),
-                     count[i] + fix_store->record_count(i));
+        if (count[i] + fix_store->record_count(i) > fix_store->maxslot() && full.empty())
+          full = fmt::format("Atom {} has more than maxslot = {} bonds and contacts ({}); "
+                             "increase the pair_style lattice/bond keyword maxslot", tag[i],
+                             fix_store->maxslot(), count[i] + fix_store->record_count(i));
         most = MAX(most, count[i] + fix_store->record_count(i));
       }
+      lattice_error_from_any_rank(lmp, FLERR, !full.empty(), full);
       MPI_Allreduce(&most, &most_all, 1, MPI_INT, MPI_MAX, world);
       fix_store->fit_capacity(most_all);
     }
@@ -205,24 +208,29 @@ void LatticeBondRecords::check_overlap(int i, int j, double rsq, const LatticeRa
   double **x = atom->x;
   const tagint *tag = atom->tag;
   if (dist < COINCIDENT_FRACTION * touch)
-    error->one(FLERR, "pair_style lattice/bond: atoms {} and {} are at the same position ({} {} {}, "
-               "distance {}): coincident atoms, made twice (two create_atoms commands or regions "
-               "that overlap, a repeated line of a data file). Remove the copies, e.g. with "
-               "delete_atoms overlap {} all all", tag[i], tag[j], x[i][0], x[i][1], x[i][2], dist,
-               0.5 * touch);
+    lattice_error_one(
+        lmp, FLERR,
+        fmt::format("pair_style lattice/bond: atoms {} and {} are at the same position ({} {} {}, "
+                    "distance {}): coincident atoms, made twice (two create_atoms commands or "
+                    "regions that overlap, a repeated line of a data file). Remove the copies, "
+                    "e.g. with delete_atoms overlap {} all all", tag[i], tag[j], x[i][0], x[i][1],
+                    x[i][2], dist, 0.5 * touch));
   if (!bonding) return;
   const double tolerance = bonding->tolerance;
   const double limit = MAX(tolerance, OVERLAP_FLOOR);
   if (dist >= touch * (1.0 - limit)) return;
   const double xb = bonding->params[atom->type[i]][atom->type[j]].xb;
-  error->one(FLERR, "pair_style lattice/bond: atoms {} and {} overlap at bonding: their distance "
-             "{:.6g} is {:.3g}% below r_i + r_j = {:.6g} (radii {:.6g} and {:.6g}), where bonded "
-             "particles touch; the bond would start compressed by {:.3g} (Xb = {:.3g} of the type pair). Bonds are "
-             "made between (r_i + r_j)(1 - t) and (r_i + r_j)(1 + t) = {:.6g} to {:.6g} (t = "
-             "tolerance {}). Check the diameters (a particle too large for its lattice spacing) "
-             "and the positions, or raise the pair_style keyword tolerance (< 0.4)",
-             tag[i], tag[j], dist, 100.0 * (1.0 - dist / touch), touch, radius[i], radius[j],
-             touch - dist, xb, touch * (1.0 - limit), touch * (1.0 + tolerance), tolerance);
+  lattice_error_one(
+      lmp, FLERR,
+      fmt::format("pair_style lattice/bond: atoms {} and {} overlap at bonding: their distance "
+                  "{:.6g} is {:.3g}% below r_i + r_j = {:.6g} (radii {:.6g} and {:.6g}), where "
+                  "bonded particles touch; the bond would start compressed by {:.3g} (Xb = {:.3g} "
+                  "of the type pair). Bonds are made between (r_i + r_j)(1 - t) and (r_i + r_j)"
+                  "(1 + t) = {:.6g} to {:.6g} (t = tolerance {}). Check the diameters (a particle "
+                  "too large for its lattice spacing) and the positions, or raise the pair_style "
+                  "keyword tolerance (< 0.4)",
+                  tag[i], tag[j], dist, 100.0 * (1.0 - dist / touch), touch, radius[i], radius[j],
+                  touch - dist, xb, touch * (1.0 - limit), touch * (1.0 + tolerance), tolerance));
 }
 
 /* ----------------------------------------------------------------------
@@ -354,8 +362,8 @@ void LatticeBondRecords::settle_record_trouble(RecordTrouble &trouble, const big
   const int nlocal = atom->nlocal;
 
   if (counts_all[2] > 0)
-    error_from_any_rank(
-        trouble.count[RT::RENUMBERED] > 0,
+    lattice_error_from_any_rank(
+        lmp, FLERR, trouble.count[RT::RENUMBERED] > 0,
         fmt::format("pair_style lattice/bond: the atom IDs changed after the bonds were made: atom "
                     "{} holds the record of its bond to atom {}, but each record is kept on the "
                     "lower ID of its pair, by the IDs the particles had when the bond was made. "
@@ -447,7 +455,7 @@ void LatticeBondRecords::settle_record_trouble(RecordTrouble &trouble, const big
                           "{}: atom {} exists but is neither on this rank nor a ghost. {}",
                           trouble.owner[RT::BEYOND], trouble.partner[RT::BEYOND], cutghost,
                           trouble.partner[RT::BEYOND], when);
-  error_from_any_rank(!message.empty(), message);
+  lattice_error_from_any_rank(lmp, FLERR, !message.empty(), message);
 }
 
 /* ----------------------------------------------------------------------
@@ -466,25 +474,6 @@ void LatticeBondRecords::drop_record(int i, tagint partner)
       if (hetero.enabled()) cache_factors(i);
       return;
     }
-}
-
-/* ----------------------------------------------------------------------
-   collective: if some rank has a message (mine), every rank stops with the
-   message of the lowest such rank (error->all: printed once, by rank 0);
-   returns if none has one
-------------------------------------------------------------------------- */
-
-void LatticeBondRecords::error_from_any_rank(bool mine, const std::string &message)
-{
-  const int nprocs = comm->nprocs;
-  int rank = mine ? comm->me : nprocs, first = nprocs;
-  MPI_Allreduce(&rank, &first, 1, MPI_INT, MPI_MIN, world);
-  if (first >= nprocs) return;
-  int len = (comm->me == first) ? (int) message.size() : 0;
-  MPI_Bcast(&len, 1, MPI_INT, first, world);
-  std::string text = (comm->me == first) ? message : std::string(len, ' ');
-  MPI_Bcast(&text[0], len, MPI_CHAR, first, world);
-  error->all(FLERR, text);
 }
 
 /* ----------------------------------------------------------------------

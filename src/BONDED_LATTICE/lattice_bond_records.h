@@ -96,7 +96,6 @@ class LatticeBondRecords : protected Pointers {
   void settle_record_trouble(RecordTrouble &trouble, const bigint *counts_all, double cutghost,
                              double min_radius);
   void drop_record(int i, tagint partner);
-  void error_from_any_rank(bool mine, const std::string &message);
   // pair i-j at bonding or as a candidate: coincident atoms, and the overlap
   // of a bondable pair (bonding: null if the pair does not bond)
   void check_overlap(int i, int j, double rsq, const LatticeRadii &radius, const Bonding *bonding);

@@ -18,6 +18,7 @@
 #include "fix_lattice_bond_store.h"
 #include "force.h"
 #include "lammps_api_compat.h"
+#include "lattice_errors.h"
 #include "pair_lattice_bond.h"
 #include "update.h"
 #include "utils.h"
@@ -169,8 +170,9 @@ void WriteLatticeBonds::command(int narg, char **arg)
   for (size_t k = 0; k < n; k++) per_state[(int) all[VALUES * k + 2]]++;
 
   FILE *fp = fopen(arg[0], "w");
-  if (!fp) error->one(FLERR, "write_lattice_bonds: cannot open file {}: {}", arg[0],
-                      utils::getsyserror());
+  if (!fp)
+    lattice_error_one(lmp, FLERR, fmt::format("write_lattice_bonds: cannot open file {}: {}",
+                                              arg[0], utils::getsyserror()));
   lattice_print(fp, "# BONDED_LATTICE bond network, format {}\n", FILE_FORMAT);
   lattice_print(fp, "# written at step {} by LAMMPS {}\n", update->ntimestep, lmp->version);
   lattice_print(fp, "# records {}: intact {}, tension {}, shear {}, contact {}\n", n, per_state[0],
@@ -208,10 +210,7 @@ void ReadLatticeBonds::command(int narg, char **arg)
   if (comm->me == 0) problem = read_records(arg[0], values);
   int ok = problem.empty() ? 1 : 0;
   MPI_Bcast(&ok, 1, MPI_INT, 0, world);
-  if (!ok) {
-    if (comm->me == 0) error->one(FLERR, "read_lattice_bonds: {}", problem);
-    MPI_Barrier(world);
-  }
+  if (!ok) lattice_error_from_any_rank(lmp, FLERR, comm->me == 0, "read_lattice_bonds: " + problem);
   bigint n = (bigint) values.size();
   MPI_Bcast(&n, 1, MPI_LMP_BIGINT, 0, world);
   values.resize(n);

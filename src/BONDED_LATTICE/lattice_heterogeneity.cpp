@@ -9,6 +9,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
+#include "lattice_errors.h"
 
 #include <cmath>
 #include <cstdint>
@@ -136,23 +137,26 @@ void LatticeHeterogeneity::find()
                  "per atom ({}{})", name, want_double ? "floating-point" : "integer", what, name);
     return index;
   };
+  std::string bad;    // the first atom with a value out of range on this rank
   if (!stiffness_name.empty()) {
     stiffness_index = lookup(stiffness_name, 1);
     stiffness_factor = atom->dvector[stiffness_index];
-    for (int i = 0; i < atom->nlocal; i++)
+    for (int i = 0; i < atom->nlocal && bad.empty(); i++)
       if (!(stiffness_factor[i] > 0.0) || !std::isfinite(stiffness_factor[i]))
-        error->one(FLERR, "pair_style lattice/bond: atom {} has stiffness factor d_{} = {}; need a "
-                   "finite value > 0 (it multiplies Kn and Ks)", atom->tag[i], stiffness_name,
-                   stiffness_factor[i]);
+        bad = fmt::format("pair_style lattice/bond: atom {} has stiffness factor d_{} = {}; need "
+                          "a finite value > 0 (it multiplies Kn and Ks)", atom->tag[i],
+                          stiffness_name, stiffness_factor[i]);
   }
   if (!grain_name.empty()) {
     grain_index = lookup(grain_name, 0);
     grain_id = atom->ivector[grain_index];
-    for (int i = 0; i < atom->nlocal; i++)
+    for (int i = 0; i < atom->nlocal && bad.empty(); i++)
       if (grain_id[i] < 0)
-        error->one(FLERR, "pair_style lattice/bond: atom {} has grain ID i_{} = {}; need >= 0",
-                   atom->tag[i], grain_name, grain_id[i]);
+        bad = fmt::format("pair_style lattice/bond: atom {} has grain ID i_{} = {}; need >= 0",
+                          atom->tag[i], grain_name, grain_id[i]);
   }
+  // (every rank is here, at init: the message of any rank, printed by rank 0)
+  lattice_error_from_any_rank(lmp, FLERR, !bad.empty(), bad);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -11,6 +11,7 @@
 #include "error.h"
 #include "fix_lattice_bond_store.h"
 #include "force.h"
+#include "lattice_errors.h"
 #include "pair_lattice_bond.h"
 #include "update.h"
 
@@ -91,34 +92,46 @@ void LatticeTimeStep::check(const PairLatticeBond &pair, LatticeCommCarrier &car
 
 /* ---------------------------------------------------------------------- */
 
-void LatticeTimeStep::report_instability(const FixLatticeBondStore *store, int i,
-                                         double min_radius) const
+std::string LatticeTimeStep::instability_message(const FixLatticeBondStore *store, int i,
+                                                 double min_radius) const
 {
   double **x = atom->x;
   const double *d = store->displacements() + 3 * i;
   const double step = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   const double dt = update->dt;
-  error->one(FLERR,
-             "pair_style lattice/bond: atom {} moved {:.6g} in one time step at step {} (more "
-             "than a tenth of the smallest particle radius, {:.6g}; it is now at {:.6g} {:.6g} "
-             "{:.6g}): the integration is unstable. The time step {:.6g} is {:.2f} of the "
-             "critical time step {:.6g} reported at the start of the run: reduce it to at most "
-             "{:.6g}, or look for a much stiffer wall or type pair",
-             atom->tag[i], step, update->ntimestep, step_limit(min_radius), x[i][0],
-             x[i][1], x[i][2], dt, dt_critical > 0.0 ? dt / dt_critical : 0.0, dt_critical,
-             DT_SAFETY_FRACTION * dt_critical);
+  return fmt::format(
+      "pair_style lattice/bond: atom {} moved {:.6g} in one time step at step {} (more than a "
+      "tenth of the smallest particle radius, {:.6g}; it is now at {:.6g} {:.6g} {:.6g}): the "
+      "integration is unstable. The time step {:.6g} is {:.2f} of the critical time step {:.6g} "
+      "reported at the start of the run: reduce it to at most {:.6g}, or look for a much stiffer "
+      "wall or type pair",
+      atom->tag[i], step, update->ntimestep, step_limit(min_radius), x[i][0], x[i][1], x[i][2], dt,
+      dt_critical > 0.0 ? dt / dt_critical : 0.0, dt_critical, DT_SAFETY_FRACTION * dt_critical);
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   only the rank that owns atom i knows (the force loop has no collective):
+   error->one, with the wait that lets its message reach the user
+   (lattice_errors.h)
+------------------------------------------------------------------------- */
+
+void LatticeTimeStep::report_instability(const FixLatticeBondStore *store, int i,
+                                         double min_radius) const
+{
+  lattice_error_one(lmp, FLERR, instability_message(store, i, min_radius));
+}
+
+/* ----------------------------------------------------------------------
+   every rank is here: error->all with the message of the lowest rank that
+   has a runaway atom (printed by rank 0, to the screen and the log file)
+------------------------------------------------------------------------- */
 
 void LatticeTimeStep::stop_if_unstable(FixLatticeBondStore *store, double min_radius) const
 {
   const int runaway = store->update_displacements(step_limit(min_radius));
-  int any = (runaway >= 0) ? 1 : 0, any_all = 0;
-  MPI_Allreduce(&any, &any_all, 1, MPI_INT, MPI_MAX, world);
-  if (any) report_instability(store, runaway, min_radius);
-  // the rank(s) above stop the run
-  if (any_all) MPI_Barrier(world);
+  lattice_error_from_any_rank(lmp, FLERR, runaway >= 0,
+                              runaway >= 0 ? instability_message(store, runaway, min_radius)
+                                           : std::string());
 }
 
 /* ----------------------------------------------------------------------

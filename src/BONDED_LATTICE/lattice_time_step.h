@@ -13,6 +13,7 @@
 #include "lattice_comm.h"
 #include "pointers.h"
 
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -30,7 +31,10 @@ class LatticeTimeStep : protected Pointers, public LatticeReversePart {
   // the critical time step of the pair's records, logged with a warning if
   // the time step is above its safety fraction; collective
   void check(const PairLatticeBond &pair, LatticeCommCarrier &carrier);
-  // stop: local atom i moved more than step_limit(min_radius) in this step
+  // the message that local atom i moved more than step_limit(min_radius) in this step
+  std::string instability_message(const FixLatticeBondStore *store, int i,
+                                  double min_radius) const;
+  // stop with that message, found by this rank alone (lattice_error_one)
   [[noreturn]] void report_instability(const FixLatticeBondStore *store, int i,
                                        double min_radius) const;
   // during a run: stop if a particle moved more than step_limit(min_radius)

@@ -442,6 +442,8 @@ void PairLatticeBond::compute(int eflag, int vflag)
   fix_store->publish_step_limit(LatticeTimeStep::step_limit(min_radius));
   const int runaway = fix_store->update_displacements(
       (setup || minimizing) ? 0.0 : fix_store->step_limit());
+  // (only the owner knows, and no collective is added to every step for it:
+  // report_instability makes sure its message reaches the user, lattice_errors.h)
   if (runaway >= 0) time_step->report_instability(fix_store, runaway, min_radius);
   comm->forward_comm(this);
   if (setup) time_step->check(*this, *this);

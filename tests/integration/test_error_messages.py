@@ -177,6 +177,22 @@ def test_runaway_atom_is_reported_by_the_stability_test(tmp_path, integrator, np
     assert_not_blamed(err, "skin", "communication cutoff")
 
 
+def test_runaway_found_by_the_force_loop_on_rank_1_is_reported(tmp_path):
+    # 4e3 m/s: 8e-5 m (0.16 radius, above the tenth of a radius) in the first step,
+    # but the bonds stay inside the ghost cutoff (1e-3 + 8e-5 < 1.11e-3 m): no record
+    # trouble, so the force loop's own test finds it, on the rank that owns atom 50
+    # alone (rank 1 of the 1 by 2 grid: y = 5.2e-3 m is above the middle, 3.46e-3 m);
+    # its message must reach the output before the abort
+    res = run_deck(ROOMY + "set atom 50 vx 4.0e3\nfix 1 all lattice/nve\n"
+                   "timestep 2.0e-8\nrun 100\n", tmp_path, np=2)
+    err = error_line(res)
+    assert "ERROR on proc 1" in err
+    # 4e3 m/s x 2e-8 s = 8e-5 m, printed with 6 significant digits
+    assert "atom 50 moved 8e-05 in one time step at step 1" in err
+    assert "unstable" in err
+    assert_not_blamed(err, "skin", "communication cutoff")
+
+
 # ---------------------------------------------------------------- Python: failed runs
 
 def bad_scene():
