@@ -161,6 +161,19 @@ def test_default_on_fronts():
     per = per_test_settings(s, lat)
     assert per["elastic"][:2] == (100, 0.5) and per["tension"][:2] == (100, 0.5)
     assert per["compression"][:2] == (1000, 1.0)
+    per = per_test_settings(s, lat, damping=1.0)
+    assert [per[t][:2] for t in ("elastic", "tension", "compression")] == [
+        (100, 1.0), (100, 1.0), (1000, 1.0)]
+    # per-test defaults at damping 1: 1000 + 100 + 1000 steps, share max(0, 0.2, 0.8); the
+    # only cheaper grid settings (100 crossings, 1200 steps) use 6 and 10 of the tolerance
+    mixed = {"elastic": (100, 1.0), "tension": (100, 1.0), "compression": (1000, 1.0)}
+    d = default_on_fronts(s, lat, by_name, default=mixed)
+    assert d["cost"] == 2100 and d["share"] == pytest.approx(0.8) and d["on_front"]
+    # compression at 300 and damping 0.5 (Cu 6 x its tolerance, 1400 steps) is beaten by the
+    # cheaper (100, 0.5) at the same share
+    mixed["compression"] = (300, 0.5)
+    d = default_on_fronts(s, lat, by_name, default=mixed)
+    assert d["share"] == pytest.approx(6.0) and not d["on_front"]
 
 
 def test_reference_convergence():
@@ -181,12 +194,48 @@ def test_reference_convergence():
     conv = reference_convergence(s, lat, by_name)
     assert conv["Tu"] == pytest.approx(0.0008) and conv["Cu"] == pytest.approx(0.0008)
     assert conv["E"] == pytest.approx(0.0008) and conv["nu"] == pytest.approx(0.0008)
-    assert converged_text(s, lat, by_name).startswith("a converged reference")
-    # a variant 0.3% away: not converged (CONVERGED_WITHIN 0.2%)
+    text = converged_text(s, lat, by_name)
+    # the variants 4x coarser deviate by 0.08%: the reference's own error <= 0.08% / 3
+    assert text.startswith("a converged reference") and "0.027%" in text
+    # a variant 0.4% away: its own error may be 0.4% / 3 > 0.1%, not converged
     name = se.Case("stepwise", "compression", s.n_strength, schedule="stepwise", relax_steps=25,
                    dim=3).name
-    by_name[name]["strength"] = 200e6 * 1.003
+    by_name[name]["strength"] = 200e6 * 1.004
     assert converged_text(s, lat, by_name).startswith("NOT a converged reference")
     # a missing variant: not measured
     del by_name[name]
     assert "not measured" in converged_text(s, lat, by_name)
+
+
+def test_default_loading_per_test_kind():
+    from bonded_lattice.conversion import rock_to_bond
+    from bonded_lattice.experiment import plan_test, test_lattice
+    from bonded_lattice.rocks import get_rock
+    from bonded_lattice.schedules import DEFAULT_CROSSINGS_BY_TEST, default_loading
+
+    # 3D: the papers' damping, 1000 crossings, except the elastic (30) and tension (100)
+    # tests (docs/speed_error.md, part 4); 2D: one setting for every test
+    assert default_loading(3, "compression") == {"crossings": 1000.0, "damping": 1.0}
+    assert default_loading(3, "confined") == default_loading(3, "compression")
+    assert default_loading(3, "elastic") == {"crossings": 30.0, "damping": 1.0}
+    assert default_loading(3, "tension") == {"crossings": 100.0, "damping": 1.0}
+    assert all(default_loading(2, t) == DEFAULT_LOADING[2]
+               for t in ("elastic", "tension", "compression"))
+    assert DEFAULT_CROSSINGS_BY_TEST[2] == {}
+    with pytest.raises(ValueError, match="dim = 4"):
+        default_loading(4, "tension")
+    # plan_test's defaults are these: the same plan as with the values given explicitly
+    rock = get_rock("quartzite")
+    for dim in (2, 3):
+        bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, 1e-3, dim)
+        for test in ("elastic", "tension", "compression"):
+            lat = test_lattice(dim, 4, 1e-3, test)
+            assert plan_test(rock, bond, lat, test) == plan_test(rock, bond, lat, test,
+                                                                 **default_loading(dim, test))
+
+
+def test_cli_help_states_the_per_test_defaults():
+    from bonded_lattice.cli_options import _loading_default
+
+    assert _loading_default("crossings") == "50 in 2D, 1000 in 3D except elastic 30, tension 100"
+    assert _loading_default("damping") == "0.25 in 2D, 1 in 3D"

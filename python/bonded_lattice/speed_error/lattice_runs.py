@@ -296,7 +296,7 @@ def run_lattice(s: Settings, out: Path, reuse: bool) -> dict:
     checks = []
     chosen = None
     ref_check = {t: run(check_reference_case(s, t)) for t in ("tension", "compression")}
-    default_check = {t: run(Case("check", t, s.n_check, **s.default, dim=s.dim))
+    default_check = {t: run(Case("check", t, s.n_check, **s.default_for(t), dim=s.dim))
                      for t in ref_check}
     for c, f, _ in candidates[:3]:
         rows = {t: run(Case("check", t, s.n_check, crossings=c, damping=f, dim=s.dim))

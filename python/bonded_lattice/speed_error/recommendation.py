@@ -55,8 +55,10 @@ def recommendation_section(L: list[str], s: Settings, lat: dict, V: dict,
                 f"{q} {_pct(r['errors'].get(q))}" for q in ("Tu", "Cu")
                 for r in [by_name.get(grid_case(s, TEST_OF[q], s.check_reference_crossings,
                                                 1.0).name)] if r) + ".")
-    add(text_ref + f"  The package's default ({s.default['crossings']:g} crossings, damping "
-        f"{s.default['damping']:g}) at {size} = {s.n_check}: Tu {_pct(cr['Tu']['default'])}, "
+    pkg = {t: s.default_for(t) for t in ("tension", "compression")}
+    add(text_ref + "  The package's defaults (" + ", ".join(
+        f"{t} {d['crossings']:g} crossings, damping {d['damping']:g}" for t, d in pkg.items()) +
+        f") at {size} = {s.n_check}: Tu {_pct(cr['Tu']['default'])}, "
         f"Cu {_pct(cr['Cu']['default'])}.")
     add("")
     if lat["checks"]:
@@ -83,6 +85,33 @@ def _default_damping_note(grid: dict, paper_err: dict, c: float, f: float) -> st
         return f"  With the former damping {fd:g} no grid setting holds Cu."
     return (f"  With the former damping {fd:g}, Cu needs {ok[0]:g} crossings ({ok[0] / c:.0f}x "
             f"the steps); damping {f:g} is what allows the faster loading.")
+
+
+def alternative_and_check(lat: dict, s: Settings) -> list[str]:
+    """Two bullets of the recommendation: the most conservative other candidate, and the
+    transfer check of the chosen one against the package's default."""
+    c, f = lat["chosen"]
+    out = []
+    failed = {(x["crossings"], x["damping"]) for x in lat["checks"] if not x["passed"]}
+    mine = next(t[2] for t in lat["candidates"] if (t[0], t[1]) == (c, f))
+    others = [t for t in lat["candidates"] if (t[0], t[1]) != (c, f) and
+              (t[0], t[1]) not in failed]
+    if others:
+        cons = min(others, key=lambda t: (t[2], t[0]))
+        out.append(f"- A more conservative alternative: `crossings = {cons[0]:g}`, `damping = "
+                   f"{cons[1]:g}` ({cons[0] / c:.1f}x the steps of the recommendation, worst "
+                   f"error {cons[2]:.2f} of the tolerance against {mine:.2f}).")
+    cr = lat["check_ref"]
+    ch = next((x for x in lat["checks"] if x["passed"]), None)
+    if ch:
+        ref = ("the papers' schedule there" if s.check_reference_crossings is None
+               else f"{s.check_reference_crossings:g} crossings")
+        out.append(f"- Check on another size ({s.size_name} = {s.n_check}, against {ref}): Tu "
+                   f"{_pct(ch['errors']['Tu'])}, Cu {_pct(ch['errors']['Cu'])}; the package's "
+                   f"defaults there (tension {s.default_for('tension')['crossings']:g}, "
+                   f"compression {s.default_for('compression')['crossings']:g} crossings): Tu "
+                   f"{_pct(cr['Tu']['default'])}, Cu {_pct(cr['Cu']['default'])}.")
+    return out
 
 
 def recommendation_text(lat: dict, s: Settings, V: dict, by_name: dict) -> str:
@@ -137,19 +166,7 @@ def recommendation_text(lat: dict, s: Settings, V: dict, by_name: dict) -> str:
                     ": the viscous drag of the moving block adds to the platen stress (table "
                     "above, offset ~ damping / crossings) and delays the shear failure." +
                     _default_damping_note(grid, lat["paper_err"], c, f))
-    others = [t for t in lat["candidates"] if (t[0], t[1]) != (c, f)]
-    if others:
-        cons = min(others, key=lambda t: (t[2], t[0]))
-        text.append(f"- A more conservative alternative: `crossings = {cons[0]:g}`, `damping = "
-                    f"{cons[1]:g}` ({cons[0] / c:.0f}x the steps of the recommendation, worst "
-                    f"error {cons[2]:.2f} of the tolerance against {lat['candidates'][0][2]:.2f}).")
-    cr = lat["check_ref"]
-    ch = next((x for x in lat["checks"] if x["passed"]), None)
-    if ch:
-        text.append(f"- Check on another size (N = {s.n_check}, against {s.check_reference_crossings:g} "
-                    f"crossings): Tu {_pct(ch['errors']['Tu'])}, Cu {_pct(ch['errors']['Cu'])}; the "
-                    f"package's default there: Tu {_pct(cr['Tu']['default'])}, Cu "
-                    f"{_pct(cr['Cu']['default'])}.")
+    text += alternative_and_check(lat, s)
     dt_rows = {}
     for q in QUANTITIES:
         n = s.n_elastic if q in ("E", "nu") else s.n_strength

@@ -6,9 +6,9 @@ from __future__ import annotations
 
 from ..schedules import PAPER_SCHEDULES
 from .plots import plot_constant, plot_pareto
-from .recommendation import recommendation_section
-from .report_defaults import (converged_text, default_on_fronts, errors_text, front_text,
-                              per_test_text)
+from .recommendation import alternative_and_check, recommendation_section
+from .report_defaults import (converged_text, default_on_fronts, defaults_words, errors_text,
+                              front_text, package_defaults, per_test_text)
 from .report_fronts import front_tables
 from .report_lattice import grid_tables, paper_table, stepwise_table
 from .settings import QUANTITIES, TOLERANCE, Settings, grid_case
@@ -39,8 +39,7 @@ def summary_lines(s2: Settings, lat2: dict, s3: Settings | None, lat3: dict | No
             continue
         by = {r["name"]: r for r in lat["results"]}
         d = default_on_fronts(s, lat, by)
-        c, f = d["default"]
-        fronts.append(f"{s.dim}D ({c:g} crossings, damping {f:g}): "
+        fronts.append(f"{s.dim}D ({defaults_words(d['defaults'])}): "
                       f"{'on' if d['on_front'] else 'NOT on'} the front"
                       + (f", {d['share']:.2f} of the tolerance used" if d["share"] is not None
                          else ", not in the grid"))
@@ -55,28 +54,32 @@ def summary_lines(s2: Settings, lat2: dict, s3: Settings | None, lat3: dict | No
             lines.append(f"- **Recommended 3D defaults**: `--crossings {c:g} --damping {f:g}` "
                          f"(`DEFAULT_LOADING[3]` {'is this setting' if same else 'DIFFERS'}; "
                          f"before this study {FORMER_3D['crossings']:g} and "
-                         f"{FORMER_3D['damping']:g}); " + cost_text(s3, lat3, by3) + ".")
+                         f"{FORMER_3D['damping']:g}).  " + per_test_text(s3, lat3, by3) +
+                         "  Cost of these per-test defaults: " +
+                         cost_text(s3, lat3, by3, package_defaults(s3)) + ".")
         else:
             lines.append("- **Recommended 3D defaults**: none of the 3D grid's settings passed "
                          "every test (part 4).")
     return lines
 
 
-def cost_text(s: Settings, lat: dict, by_name: dict[str, dict]) -> str:
-    """The recommended setting's time steps per test against the former 3D default and the
-    papers' stepwise schedule."""
-    c, f = lat["chosen"]
+def cost_text(s: Settings, lat: dict, by_name: dict[str, dict],
+              settings: dict[str, tuple[float, float]] | None = None) -> str:
+    """Time steps per test at ``settings`` (per test kind; default the recommended setting
+    for all) against the former 3D default and the papers' stepwise schedule."""
+    if settings is None:
+        settings = {t: tuple(lat["chosen"]) for t in TESTS}
     parts = []
     for t in TESTS:
-        new = by_name.get(grid_case(s, t, c, f).name)
+        new = by_name.get(grid_case(s, t, *settings[t]).name)
         old = by_name.get(grid_case(s, t, FORMER_3D["crossings"], FORMER_3D["damping"]).name)
         paper = lat["paper"].get(t)
         if not new:
             continue
         txt = f"{t} {new['steps']} time steps"
         if old:
-            txt += f" ({new['steps'] / old['steps']:.1f}x the former default's"
-            txt += f", {paper['steps'] / new['steps']:.1f}x fewer than the papers' schedule)" \
+            txt += f" ({new['steps'] / old['steps']:.2g}x the former default's"
+            txt += f", {paper['steps'] / new['steps']:.3g}x fewer than the papers' schedule)" \
                 if paper else ")"
         parts.append(txt)
     return "; ".join(parts)
@@ -99,7 +102,10 @@ def recommendation_text_3d(lat: dict, s: Settings, V: dict, by_name: dict) -> st
                 "against the formulas, Tu, Cu against the papers' schedule); at the former 3D "
                 f"default ({former[0]:g} crossings, damping {former[1]:g}): "
                 f"{errors_text(lat, former)}.")
-    text.append("- Cost: " + cost_text(s, lat, by_name) + ".  Wall time on one rank at the "
+    text.append("- Cost of the package's per-test defaults: " +
+                cost_text(s, lat, by_name, package_defaults(s)) + ".")
+    text.append("- Cost of the one recommended setting: " + cost_text(s, lat, by_name) +
+                ".  Wall time on one rank at the "
                 "recommended setting: " + ", ".join(
                     f"{t} {r['wall_s']:.1f} s" for t in TESTS
                     for r in [by_name.get(grid_case(s, t, c, f).name)] if r) +
@@ -115,26 +121,29 @@ def recommendation_text_3d(lat: dict, s: Settings, V: dict, by_name: dict) -> st
                 "in how the block fails, so away from the papers' damping Cu converges to "
                 "another strength however slow the loading (docs/validation.md, '3D "
                 "compression: how slow constant loading must be').")
-    others = [t for t in lat["candidates"] if (t[0], t[1]) != (c, f)]
-    if others:
-        cons = min(others, key=lambda t: (t[2], t[0]))
-        text.append(f"- Other candidates: `crossings = {cons[0]:g}`, `damping = {cons[1]:g}` "
-                    f"({cons[0] / c:.1f}x the steps, worst error {cons[2]:.2f} of the "
-                    f"tolerance against {lat['candidates'][0][2]:.2f}).")
-    cr = lat["check_ref"]
-    ch = next((x for x in lat["checks"] if x["passed"]), None)
-    if ch:
-        text.append(f"- Check on another size (n_y = {s.n_check}, against the papers' schedule "
-                    f"there, {cr['Tu']['ref_steps']} and {cr['Cu']['ref_steps']} steps): Tu "
-                    f"{_pct(ch['errors']['Tu'])}, Cu {_pct(ch['errors']['Cu'])}; the package's "
-                    f"default there: Tu {_pct(cr['Tu']['default'])}, Cu "
-                    f"{_pct(cr['Cu']['default'])}.")
+    text += alternative_and_check(lat, s)
     pt = per_test_text(s, lat, by_name)
     if pt:
         text.append("- " + pt)
-    text.append(f"- Scope: 3D quartzite blocks of n_y = {s.n_elastic}, {s.n_strength} and "
-                f"{s.n_check}, time step 0.1 sqrt(m/Kn) as in 2D.")
+    sizes = sorted({s.n_elastic, s.n_strength, s.n_check})
+    text.append(f"- Scope: 3D quartzite blocks of n_y = {', '.join(map(str, sizes))}, time "
+                "step 0.1 sqrt(m/Kn) as in 2D.")
     return "\n".join(text)
+
+
+def spread_text(lat: dict) -> str:
+    """How far each quantity moves over the whole constant grid (max - min of the errors),
+    against its tolerance."""
+    spread = {}
+    for q in QUANTITIES:
+        vals = [e[q] for e in lat["grid"].values() if e.get(q) is not None]
+        if vals:
+            spread[q] = max(vals) - min(vals)
+    calm = [q for q, x in spread.items() if x <= TOLERANCE[q]]
+    return ("Spread of the errors over the whole grid (max - min, percentage points): " +
+            ", ".join(f"{q} {100 * x:.3f}" for q, x in spread.items()) + "." +
+            (f"  Within its tolerance at every setting of the grid: {', '.join(calm)}: "
+             "there the loading hardly matters." if calm else ""))
 
 
 def section_3d(L: list[str], s: Settings, lat: dict, V: dict, rel: str, img) -> None:
@@ -169,7 +178,7 @@ def section_3d(L: list[str], s: Settings, lat: dict, V: dict, rel: str, img) -> 
     add("")
     add("### The papers' 3D stepwise schedule (reference points)")
     add("")
-    paper_table(L, lat, "n_y")
+    paper_table(L, lat, "n_y", "elements")
     add("Its variants (relaxation steps x step size):")
     add("")
     stepwise_table(L, s, lat, by_name)
@@ -179,6 +188,8 @@ def section_3d(L: list[str], s: Settings, lat: dict, V: dict, rel: str, img) -> 
         "within the papers' accuracy.")
     add("")
     grid_tables(L, s, lat, by_name)
+    add(spread_text(lat))
+    add("")
     add(f"![3D constant schedule: error against crossings and damping]({rel}/{names['constant']})")
     add("")
     add("### 3D Pareto fronts: error against time steps")
@@ -190,10 +201,3 @@ def section_3d(L: list[str], s: Settings, lat: dict, V: dict, rel: str, img) -> 
                            heading="### Recommended 3D defaults", text=recommendation_text_3d)
     add("**The defaults on the Pareto front.**  " + front_text(s, lat, by_name))
     add("")
-    d = default_on_fronts(s, lat, by_name)
-    if d["in_grid"]:
-        share = d["share"]
-        add(f"At the 3D default the largest share of the tolerance used is {share:.2f} "
-            f"(<= 1: the papers' accuracy for all four quantities)." if share is not None
-            else "")
-        add("")

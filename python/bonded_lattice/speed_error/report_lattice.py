@@ -132,11 +132,11 @@ def lattice_section(L: list[str], s: Settings, quick: bool, lat: dict,
         add("")
 
 
-def paper_table(L: list[str], lat: dict, size_name: str) -> None:
+def paper_table(L: list[str], lat: dict, size_name: str, unit: str = "particles") -> None:
     """The papers' stepwise schedule's runs (the reference points), appended to ``L``;
-    ``size_name``: N (2D) or n_y (3D)."""
+    ``size_name``: N (2D) or n_y (3D); ``unit``: particles (2D) or elements (3D)."""
     add, pe = L.append, lat["paper"]
-    add(f"| test | {size_name} | particles | step size (m) | relax steps | time steps | particle-steps | "
+    add(f"| test | {size_name} | {unit} | step size (m) | relax steps | time steps | particle-steps | "
         "wall (s) | measured | error against the formula |")
     add("|---|---|---|---|---|---|---|---|---|---|")
     for test in ("elastic", "tension", "compression"):

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..schedules import DEFAULT_LOADING, PAPER_SCHEDULES
+from ..schedules import DEFAULT_LOADING, PAPER_SCHEDULES, default_loading
 
 # accuracy that counts as "the papers' accuracy": a setting reaches it for quantity q when
 # |error_q - error_q of the papers' schedule| <= TOLERANCE[q], i.e. it measures what the
@@ -72,6 +72,11 @@ class Settings:
     def default(self) -> dict[str, float]:
         """The package's constant-schedule defaults in this dimension (DEFAULT_LOADING)."""
         return DEFAULT_LOADING[self.dim]
+
+    def default_for(self, test: str) -> dict[str, float]:
+        """The package's default of ``test`` in this dimension (schedules.default_loading:
+        DEFAULT_LOADING with the per-test crossings)."""
+        return default_loading(self.dim, test)
 
 
 FULL = Settings(
