@@ -9,7 +9,7 @@ from ..plotting import convergence_png
 from .doc import DocContext, paper_pct, pct
 from .papers import paper_value
 from .geometry import section_factor
-from ..schedules import DEFAULT_LOADING
+from ..schedules import DEFAULT_LOADING, default_loading
 from .runner import PAPER_DAMPING_LOADING, Validation, rock_for
 from .section import Section
 
@@ -122,13 +122,16 @@ def _series_table(dim: str, rows: list[dict]) -> list[str]:
 
 
 def _defaults_3d() -> str:
-    """How the 3D main columns' loading relates to the package's 3D default."""
-    d3 = DEFAULT_LOADING[3]
-    if (d3["crossings"], d3["damping"]) == (PAPER_DAMPING_LOADING["crossings"],
-                                          PAPER_DAMPING_LOADING["damping"]):
+    """How the 3D main columns' loading relates to the package's 3D defaults (per test)."""
+    per_test = {t: default_loading(3, t) for t in ("elastic", "tension", "compression")}
+    main = (PAPER_DAMPING_LOADING["crossings"], PAPER_DAMPING_LOADING["damping"])
+    if all((d["crossings"], d["damping"]) == main for d in per_test.values()):
         return "the defaults are the settings of the main columns"
-    return (f"our defaults are {d3['crossings']:g} crossings and eta x {d3['damping']:g} "
-            "(docs/speed_error.md)")
+    dampings = {d["damping"] for d in per_test.values()}
+    return ("our defaults are " + ", ".join(f"{d['crossings']:g} crossings for {t}"
+                                           for t, d in per_test.items()) +
+            (f" at eta x {next(iter(dampings)):g}" if len(dampings) == 1 else "") +
+            " (docs/speed_error.md)")
 
 
 def doc_series(data: dict, ctx: DocContext) -> list[str]:

@@ -10,7 +10,7 @@ is slow enough (measured here, not assumed).
 from __future__ import annotations
 
 from ..plotting import pyplot, save_png
-from ..schedules import DEFAULT_LOADING
+from ..schedules import default_loading
 from .doc import DocContext, pct
 from .runner import Validation, rock_for
 from .section import Section
@@ -69,16 +69,16 @@ def doc_loading(data: dict, ctx: DocContext) -> list[str]:
 
 
 def default_text(rows: list[dict]) -> str:
-    """What these runs say about the package's 3D default (DEFAULT_LOADING[3])."""
-    default = DEFAULT_LOADING[3]
+    """What these runs say about the package's 3D compression default."""
+    default = default_loading(3, "compression")
     c0, f0 = default["crossings"], default["damping"]
-    name = f"Our 3D default ({c0:g} crossings, eta x {f0:g}, docs/speed_error.md)"
+    name = f"Our 3D compression default ({c0:g} crossings, eta x {f0:g}, docs/speed_error.md)"
     if c0 not in CROSSINGS or f0 not in DAMPINGS:
         return f"{name} is not one of these settings."
     off = {c: [_offset(row, c, f0) for row in rows] for c in CROSSINGS}
     worst = max(abs(x) for x in off[c0])
-    text = (f"{name} reads Cu {100 * min(off[c0]):+.1f} to {100 * max(off[c0]):+.1f} points off "
-            "the stepwise schedule on these blocks" +
+    text = (f"{name} reads Cu {_span(off[c0])} points off the stepwise schedule on these "
+            "blocks" +
             (": at that speed the compression test is not yet quasi-static." if worst > QUASI_STATIC
              else f", within {100 * QUASI_STATIC:g} point of it: quasi-static."))
     slower = [c for c in CROSSINGS if c > c0]
@@ -88,12 +88,17 @@ def default_text(rows: list[dict]) -> str:
             for c in slower) + " points.")
     faster = [c for c in CROSSINGS if c < c0]
     if faster:
-        text += ("  Faster: " + ", ".join(
-            f"{c:g} crossings {100 * min(off[c]):+.1f} to {100 * max(off[c]):+.1f}"
-            for c in faster) + " points.")
+        text += ("  Faster: " + ", ".join(f"{c:g} crossings {_span(off[c])}" for c in faster) +
+                 " points.")
     return text + ("  A quarter of the damping converges, as the loading slows, to a different "
                    "strength on the larger blocks: the damping takes part in how the block "
                    "fails, so the papers' eta belongs to the papers' set-up.")
+
+
+def _span(values: list[float]) -> str:
+    """The range of offsets in points, one number when it rounds to one."""
+    lo, hi = f"{100 * min(values):+.1f}", f"{100 * max(values):+.1f}"
+    return lo if lo == hi else f"{lo} to {hi}"
 
 
 def _offset(row: dict, crossings: float, damping: float) -> float:
