@@ -25,11 +25,11 @@ def summary_lines(s2: Settings, lat2: dict, s3: Settings | None, lat3: dict | No
     by2 = {r["name"]: r for r in lat2["results"]}
     refs = (f"E and nu against the closed-form formulas (docs/theory.md); Tu and Cu against "
             f"the strength the papers' stepwise schedule (`stepwise`, alias `paper`) measures "
-            f"on a block of the same size, in 2D {converged_text(s2, lat2, by2)}")
+            f"on a block of the same size, in 2D {converged_text(s2, lat2, by2, short=True)}")
     lines = []
     if s3 is not None and lat3 is not None:
         by3 = {r["name"]: r for r in lat3["results"]}
-        refs += f"; in 3D {converged_text(s3, lat3, by3)}"
+        refs += f", in 3D {converged_text(s3, lat3, by3, short=True)}"
     lines.append(f"- **References**: {refs}.  Neither is the papers' published value: the "
                  "study measures the loading's error, and the block's own size effect is in "
                  "the reference too (docs/validation.md compares with the papers' values).")

@@ -50,9 +50,9 @@ def reference_convergence(s: Settings, lat: dict, by_name: dict[str, dict]
     return out
 
 
-def converged_text(s: Settings, lat: dict, by_name: dict[str, dict]) -> str:
+def converged_text(s: Settings, lat: dict, by_name: dict[str, dict], short: bool = False) -> str:
     """Whether the Tu, Cu reference is converged, in words, from
-    :func:`reference_convergence`."""
+    :func:`reference_convergence` (``short``: one bracket of numbers)."""
     conv = reference_convergence(s, lat, by_name)
     dev = [conv[q] for q in ("Tu", "Cu")]
     variants = " or ".join(f"{r} relaxation steps" if f == 1 else f"{f:g}x larger steps"
@@ -66,6 +66,10 @@ def converged_text(s: Settings, lat: dict, by_name: dict[str, dict]) -> str:
                 f"strengths within {nums} of it; if the error falls at least in proportion to "
                 "the relaxation time and the step size, the reference's own is at most "
                 f"1/{COARSER_BY - 1:g} of that, {100 * own:.3f}%")
+    if short:
+        return (f"{'a converged reference' if own <= CONVERGED_WITHIN else 'NOT converged'} "
+                f"(its {COARSER_BY:g}x cheaper variants within {nums}, so its own error "
+                f"<= {100 * own:.3f}%)")
     if own <= CONVERGED_WITHIN:
         return (f"a converged reference: {measured}, within {100 * CONVERGED_WITHIN:g}% (a "
                 "fifth of the strengths' tolerance)")

@@ -5,6 +5,7 @@ stepwise schedule's variants, the runs that failed, and why Cu overshoots at spe
 from __future__ import annotations
 
 from .fitting import within
+from .report_defaults import converged_text
 from .settings import (DT_BASE, QUANTITIES, TEST_OF, TOLERANCE, Case, Settings, grid_case,
                        paper_relax, test_n)
 from .text import cost as _cost
@@ -34,7 +35,7 @@ def lattice_section(L: list[str], s: Settings, quick: bool, lat: dict,
         "and Cu: error against the strength the papers' stepwise schedule measures at the same "
         "N (the multi-unit lattice is 5-15% weaker than the formulas, docs/validation.md; that "
         "deficit is the lattice's, not the loading's); the error against the formula is listed "
-        "too.  A run **reaches the papers' accuracy** for a quantity when it measures what the "
+        f"too.  That reference is {converged_text(s, lat, by_name)}.  A run **reaches the papers' accuracy** for a quantity when it measures what the "
         "papers' schedule measures to within a tolerance, |error - error of the papers' "
         "schedule| <= tolerance (the block's size effect is in both; a fast run whose loading "
         "error happens to cancel part of it is not more accurate), tolerance " + ", ".join(
