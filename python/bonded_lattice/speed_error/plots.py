@@ -87,11 +87,22 @@ def plot_contact(res: dict, path: Path) -> None:
     _save(fig, path)
 
 
-def plot_constant(lat: dict, path: Path, default: dict[str, float] = DEFAULT,
+def _per_test(default: dict | None) -> dict[str, tuple[float, float]] | None:
+    """A default setting as {test: (crossings, damping)}: ``default`` is one setting
+    ({"crossings", "damping"}) for every test, or already such a mapping."""
+    if default is None:
+        return None
+    if "crossings" in default:
+        return {t: (default["crossings"], default["damping"]) for t in set(TEST_OF.values())}
+    return default
+
+
+def plot_constant(lat: dict, path: Path, default: dict = DEFAULT,
                   title: str = "constant schedule: error against loading rate and damping"
                   ) -> None:
     """The constant schedule's error in E, nu, Tu and Cu against crossings, per damping
-    (dashed: the ``default`` setting's crossings)."""
+    (dashed: the ``default`` setting's crossings, one for all tests or per test kind)."""
+    per_test = _per_test(default)
     plt = _plt()
     fig, axes = plt.subplots(2, 2, figsize=(10, 7.5))
     dampings = sorted({k[1] for k in lat["grid"]})
@@ -109,7 +120,7 @@ def plot_constant(lat: dict, path: Path, default: dict[str, float] = DEFAULT,
         band = 100 * TOLERANCE[q]
         ax.axhspan(pe - band, pe + band, color="r", alpha=0.07,
                    label=f"papers' accuracy (their value +-{band:g}%)")
-        ax.axvline(default["crossings"], color="0.6", lw=0.8, ls="--")
+        ax.axvline(per_test[TEST_OF[q]][0], color="0.6", lw=0.8, ls="--")
         ref = "formula" if q in ("E", "nu") else "papers' schedule"
         ax.set_title(f"{q}: error against the {ref}", fontsize=10)
         ax.set_xlabel("elastic-wave crossings to failure (constant speed)")
@@ -121,11 +132,13 @@ def plot_constant(lat: dict, path: Path, default: dict[str, float] = DEFAULT,
 
 
 def plot_pareto(lat: dict, path: Path, floor: float = 1e-5,
-                default: dict[str, float] | None = None,
+                default: dict | None = None,
                 title: str = "error against cost: all runs, Pareto front, the papers' schedule"
                 ) -> None:
     """Error against time steps of every run, with the Pareto fronts (|errors| below
-    ``floor`` drawn at it) and, if given, the runs of the ``default`` setting marked."""
+    ``floor`` drawn at it) and, if given, the runs of the ``default`` setting marked (one
+    setting for all tests, or {test: (crossings, damping)})."""
+    per_test = _per_test(default)
     plt = _plt()
     fig, axes = plt.subplots(2, 2, figsize=(10.5, 8))
     for ax, q in zip(axes.ravel(), QUANTITIES):
@@ -156,10 +169,9 @@ def plot_pareto(lat: dict, path: Path, floor: float = 1e-5,
         good = [p for p in pts if within(p["errors"][q], lat["paper_err"][q], TOLERANCE[q])]
         ax.loglog([p["steps"] for p in good], [max(abs(p["errors"][q]), floor) for p in good],
                   "o", mfc="none", mec="k", ms=9, ls="none", label="at the papers' accuracy")
-        if default is not None:
+        if per_test is not None:
             mine = [p for p in pts if p["case"]["family"] in ("constant", "slow") and
-                    (p["case"]["crossings"], p["case"]["damping"]) ==
-                    (default["crossings"], default["damping"])]
+                    (p["case"]["crossings"], p["case"]["damping"]) == per_test[TEST_OF[q]]]
             ax.loglog([p["steps"] for p in mine], [max(abs(p["errors"][q]), floor) for p in mine],
                       "s", mfc="none", mec="b", ms=12, mew=1.5, ls="none",
                       label="the package's default")

@@ -151,9 +151,9 @@ def section_3d(L: list[str], s: Settings, lat: dict, V: dict, rel: str, img) -> 
     add = L.append
     by_name = {r["name"]: r for r in lat["results"]}
     names = {"constant": "speed_error_constant_3d.png", "pareto": "speed_error_pareto_3d.png"}
-    plot_constant(lat, img / names["constant"], default=s.default,
+    plot_constant(lat, img / names["constant"], default=package_defaults(s),
                   title="3D: constant schedule, error against loading rate and damping")
-    plot_pareto(lat, img / names["pareto"], default=s.default,
+    plot_pareto(lat, img / names["pareto"], default=package_defaults(s),
                 title="3D: error against cost, Pareto fronts, the papers' schedule")
     pe = lat["paper"]
     paper3 = PAPER_SCHEDULES[3]
