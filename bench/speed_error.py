@@ -2,7 +2,7 @@
 
 One command runs the whole study and writes a Markdown report with PNG plots:
 
-    python bench/speed_error.py                 # full study, about 60-70 min on one core
+    python bench/speed_error.py                 # full study, about 30-35 min on one core
     python bench/speed_error.py --quick         # small blocks, a few minutes
     python bench/speed_error.py --reuse         # rewrite the report from the cached runs
 

@@ -76,6 +76,7 @@ def write_doc(doc: Path, cmd: str, s: Settings, quick: bool, contact: dict, lat:
     add("python bench/speed_error.py            # full study (this report)")
     add("python bench/speed_error.py --reuse    # rewrite the report from the cached runs")
     add("python bench/speed_error.py --quick    # small blocks, a few minutes (not this report)")
+    add("python bench/speed_error.py --no-3d    # without part 4 (the 3D lattice)")
     add("```")
     add("")
     add("The quantities are measured as in docs/validation.md (`bonded_lattice.analysis`: "
