@@ -2,7 +2,7 @@
 
 One command runs the whole study and writes a Markdown report with PNG plots:
 
-    python bench/speed_error.py                 # full study, about 30-40 min on one core
+    python bench/speed_error.py                 # full study, about 30-35 min on one core
     python bench/speed_error.py --quick         # small blocks, a few minutes
     python bench/speed_error.py --reuse         # rewrite the report from the cached runs
 
@@ -20,6 +20,8 @@ One command runs the whole study and writes a Markdown report with PNG plots:
 3. From the fronts: the cheapest constant-schedule setting (crossings, damping)
    that keeps all four quantities at the papers' accuracy, checked on a block of
    another size; written into the report as the recommended defaults.
+4. The same for the 3D quartzite lattice (elastic n_y = 10, strength n_y = 6, check
+   n_y = 10 against the papers' 3D stepwise schedule): the 3D defaults.  --no-3d skips it.
 
 Every simulation runs on one MPI rank, one at a time.  The runs are cached as JSON
 in --out (default validation-runs/speed-error, git-ignored); --reuse keeps the
@@ -41,7 +43,8 @@ import time
 from pathlib import Path
 from types import ModuleType
 
-from bonded_lattice.speed_error import FULL, QUICK, run_contact, run_lattice, write_doc
+from bonded_lattice.speed_error import (FULL, FULL_3D, QUICK, QUICK_3D, run_contact,
+                                        run_lattice, write_doc)
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -57,6 +60,12 @@ def contact_module() -> ModuleType:
     return mod
 
 
+def _json_ready(lat: dict) -> dict:
+    """A run_lattice result with its grid's (crossings, damping) keys as strings."""
+    return ({k: v for k, v in lat.items() if k != "grid"} |
+            {"grid": {f"{c:g},{f:g}": e for (c, f), e in lat["grid"].items()}})
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true",
@@ -69,8 +78,10 @@ def main(argv: list[str] | None = None) -> int:
                         help="report to write (default docs/speed_error.md; with --quick "
                         "<out>/speed_error.md); plots go to img/ beside it")
     parser.add_argument("--reuse", action="store_true", help="keep cached runs")
+    parser.add_argument("--no-3d", action="store_true", help="skip the 3D part (part 4)")
     args = parser.parse_args(argv)
     settings = QUICK if args.quick else FULL
+    settings_3d = None if args.no_3d else (QUICK_3D if args.quick else FULL_3D)
     out = Path(args.out) if args.out else ROOT / "validation-runs" / (
         "speed-error-quick" if args.quick else "speed-error")
     doc = Path(args.doc) if args.doc else (out / "speed_error.md" if args.quick
@@ -81,11 +92,12 @@ def main(argv: list[str] | None = None) -> int:
     start = time.perf_counter()
     contact = run_contact(settings, out, args.reuse, contact_module)
     lat = run_lattice(settings, out, args.reuse)
+    lat3 = run_lattice(settings_3d, out, args.reuse) if settings_3d else None
     (out / "study.json").write_text(json.dumps(
-        {k: v for k, v in lat.items() if k not in ("grid",)} |
-        {"grid": {f"{c:g},{f:g}": e for (c, f), e in lat["grid"].items()}}, indent=1,
+        {"2": _json_ready(lat)} | ({"3": _json_ready(lat3)} if lat3 else {}), indent=1,
         default=str))
-    write_doc(doc, cmd, settings, args.quick, contact, lat, time.perf_counter() - start, ROOT)
+    write_doc(doc, cmd, settings, args.quick, contact, lat, time.perf_counter() - start, ROOT,
+              settings_3d, lat3)
     print(f"wrote {doc} and its plots in {doc.parent / 'img'}", flush=True)
     return 0
 

@@ -8,7 +8,7 @@ it with :func:`add` and its default, which is stated once, where the library sta
 
 - the rock tests (``generate``, ``run``, ``envelope``, ``calibrate``): the keyword defaults
   of :func:`bonded_lattice.experiment.run_test` and :func:`~bonded_lattice.experiment.plan_test`
-  (``crossings`` and ``damping``: :data:`bonded_lattice.schedules.DEFAULT_LOADING`), and
+  (``crossings`` and ``damping``: :func:`bonded_lattice.schedules.default_loading`), and
   :data:`TEST_DEFAULTS` for what only the command line chooses;
 - the heterogeneous block (``generate``): the fields of
   :class:`~bonded_lattice.grains.GrainModel` and :class:`~bonded_lattice.grains.GrainPairOptions`;
@@ -30,7 +30,7 @@ from .experiment import END_CHOICES, plan_test, run_test
 from .grains import GrainModel, GrainPairOptions
 from .lattice import ATOM_STYLES
 from .scenes import DEFORMATIONS, KINDS, MODES, Scene
-from .schedules import DEFAULT_LOADING, SCHEDULE_ALIASES, SCHEDULES
+from .schedules import DEFAULT_CROSSINGS_BY_TEST, DEFAULT_LOADING, SCHEDULE_ALIASES, SCHEDULES
 
 __all__ = ["OPTIONS", "TEST_DEFAULTS", "add", "heterogeneity_options", "plan_options",
            "running_options", "scene_options", "test_options"]
@@ -51,7 +51,16 @@ def _option(*flags: str, help: str, **kwargs: Any) -> Option:
 
 
 def _loading_default(name: str) -> str:
-    return ", ".join(f"{values[name]:g} in {dim}D" for dim, values in DEFAULT_LOADING.items())
+    """The default of ``crossings`` or ``damping`` per dimension, with the per-test crossings
+    (:data:`~bonded_lattice.schedules.DEFAULT_CROSSINGS_BY_TEST`) in brackets."""
+    parts = []
+    for dim, values in DEFAULT_LOADING.items():
+        text = f"{values[name]:g} in {dim}D"
+        per_test = DEFAULT_CROSSINGS_BY_TEST[dim] if name == "crossings" else {}
+        if per_test:
+            text += " except " + ", ".join(f"{t} {c:g}" for t, c in per_test.items())
+        parts.append(text)
+    return ", ".join(parts)
 
 
 OPTIONS: dict[str, Option] = {

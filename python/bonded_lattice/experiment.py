@@ -34,7 +34,7 @@ from .periodic import paper_cell, periodic_cell
 from .plotting import broken_bond_map_png, energy_png, stress_strain_png
 from .rocks import Rock
 from .runner import RunResult
-from .schedules import DEFAULT_DT_FRACTION, DEFAULT_LOADING, PAPER_SCHEDULES, schedule_name
+from .schedules import DEFAULT_DT_FRACTION, PAPER_SCHEDULES, default_loading, schedule_name
 from .study import Study
 
 
@@ -148,7 +148,8 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
 
     - eta: ``damping`` times the papers' damping (2D sqrt(8 m Kn)/N,
       3D d/V^(1/3) sqrt(8 m Kn)); ``crossings`` and ``damping`` default to
-      DEFAULT_LOADING of the lattice's dimension (2D 50 and 0.25, 3D 100 and 1);
+      :func:`bonded_lattice.schedules.default_loading` of the lattice's dimension and the
+      test (2D 50 and 0.25; 3D 1000 and 1, elastic 30 and tension 100 crossings);
     - schedule ``constant`` (ours): dt = 0.1 sqrt(m/Kn) (the papers' 2e-8 s for
       1 mm quartz in 2D); platens move at a speed slow enough that loading to
       failure takes ``crossings`` elastic wave crossings of the block, unless
@@ -171,7 +172,7 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
       single unit softens after its bonds open (3D: fails at 1.75 Cu/E).
     """
     schedule = schedule_name(schedule)
-    defaults = DEFAULT_LOADING.get(lattice.dim, DEFAULT_LOADING[3])
+    defaults = default_loading(lattice.dim, test)
     crossings = defaults["crossings"] if crossings is None else crossings
     damping = defaults["damping"] if damping is None else damping
     if not damping >= 0:

@@ -16,9 +16,10 @@ from bonded_lattice.experiment import run_test
 from bonded_lattice.rocks import get_rock
 
 SIZES = {2: [4, 8, 15], 3: [4, 6]}
-# 3D compression at 1000 wave crossings to failure: at the default 100 the platens' viscous
-# drag still reads Cu 3-5 points high on these blocks (docs/validation.md, "3D compression:
-# how slow constant loading must be")
+# 3D compression at 1000 wave crossings to failure (the 3D default since docs/speed_error.md,
+# part 4, kept explicit here): at the former default 100 the platens' viscous drag read Cu 3-5
+# points high on these blocks (docs/validation.md, "3D compression: how slow constant loading
+# must be")
 SLOW_3D = {"crossings": 1000.0}
 
 

@@ -120,6 +120,42 @@ def recommend(grid: dict[tuple[float, float], dict[str, float | None]],
     return sorted(out, key=lambda t: (t[0], t[2]))
 
 
+def worst_share(errors: dict[str, float | None], paper_errors: dict[str, float],
+                tolerance: dict[str, float]) -> float | None:
+    """The largest use of the tolerance, max_q |e_q - e_paper,q| / tol_q (None when a
+    quantity is missing or not finite)."""
+    shares = []
+    for q, tol in tolerance.items():
+        e = errors.get(q)
+        if e is None or not math.isfinite(e):
+            return None
+        shares.append(abs(e - paper_errors[q]) / tol)
+    return max(shares)
+
+
+def robust_shares(grid: dict[tuple[float, float], dict[str, float | None]],
+                  paper_errors: dict[str, float], tolerance: dict[str, float]
+                  ) -> dict[tuple[float, float], float | None]:
+    """Per grid setting (crossings, damping): :func:`worst_share` at that setting and every
+    slower one of the grid with the same damping (the quantity :func:`recommend` asks to be
+    <= 1); None when one of them has a missing quantity."""
+    out: dict = {}
+    for (c, f) in grid:
+        shares = [worst_share(grid[(cc, ff)], paper_errors, tolerance)
+                  for (cc, ff) in grid if ff == f and cc >= c]
+        out[(c, f)] = None if any(x is None for x in shares) else max(shares)
+    return out
+
+
+def grid_front(costs: dict[tuple[float, float], float],
+               errors: dict[tuple[float, float], float | None]) -> list[tuple[float, float]]:
+    """The settings on the Pareto front of cost against error (settings without an error
+    left out), by increasing cost."""
+    keys = [k for k in costs if errors.get(k) is not None]
+    front = pareto_front([costs[k] for k in keys], [errors[k] for k in keys])
+    return [keys[i] for i in front]
+
+
 def speedup(paper_steps: float, steps: float) -> float:
     return paper_steps / steps if steps > 0 else math.inf
 

@@ -21,14 +21,22 @@ from ..rocks import Rock, get_rock
 from ..runner import RunResult
 from ..schedules import DEFAULT_DT_FRACTION, PAPER_SCHEDULES
 from .fitting import recommend, within
-from .settings import DEFAULT, QUANTITIES, TEST_OF, TOLERANCE, Case, Settings, lattice_cases
+from .settings import (QUANTITIES, ROCK_OF, TEST_OF, TOLERANCE, Case, Settings, lattice_cases,
+                       paper_relax)
 
 _LOOP = re.compile(r"Loop time of (\S+) on \d+ procs for (\d+) steps")
 
 
+def case_folder(case: Case, out: Path) -> Path:
+    """The run folder of ``case``: ``out/lattice/<family>/<name>`` (2D) or
+    ``out/lattice3d/<family>/<name>`` (3D)."""
+    return out / ("lattice" if case.dim == 2 else f"lattice{case.dim}d") / case.family / case.name
+
+
 class SpeedErrorRun(RockTest):
-    """One lattice run of the study: a 2D quartz :class:`~bonded_lattice.experiment.RockTest`
-    on one rank in ``out/lattice/<family>/<name>``, without pictures, whose result
+    """One lattice run of the study: a 2D quartz or 3D quartzite (``case.dim``)
+    :class:`~bonded_lattice.experiment.RockTest` on one rank in :func:`case_folder`, without
+    pictures, whose result
     (:func:`run_record`, ``result.json``) records a failed run instead of raising.
 
     plan: :func:`~bonded_lattice.experiment.plan_test` with the case's schedule, then with
@@ -44,12 +52,13 @@ class SpeedErrorRun(RockTest):
     def __init__(self, case: Case, out: Path) -> None:
         options: dict = {"damping": case.damping}
         if case.schedule == "stepwise":
+            step = PAPER_SCHEDULES[case.dim]["step_size"][case.test]
             options.update(schedule="stepwise", relax_steps=case.relax_steps,
-                           step_size=case.step_factor * PAPER_SCHEDULES[2]["step_size"][case.test])
+                           step_size=case.step_factor * step)
         else:
             options.update(crossings=case.crossings)
-        super().__init__(get_rock("quartz"), 2, case.test, case.n,
-                         out / "lattice" / case.family / case.name, np_=1, d=1.0e-3,
+        super().__init__(get_rock(ROCK_OF[case.dim]), case.dim, case.test, case.n,
+                         case_folder(case, out), np_=1, d=1.0e-3,
                          progress=False, pictures=False, **options)
         self.case = case
 
@@ -58,7 +67,7 @@ class SpeedErrorRun(RockTest):
         case, plan = self.case, self.plan
         if case.dt_fraction is not None:
             # any time step (plan_test limits dt_scale to 2): same loading, steps rescaled
-            own = PAPER_SCHEDULES[2]["dt_fraction"] if case.schedule == "stepwise" else DEFAULT_DT_FRACTION
+            own = PAPER_SCHEDULES[case.dim]["dt_fraction"] if case.schedule == "stepwise" else DEFAULT_DT_FRACTION
             dt = plan.dt * case.dt_fraction / own
             steps = int(math.ceil(plan.steps * plan.dt / dt))
             if case.schedule == "stepwise":
@@ -92,8 +101,11 @@ class SpeedErrorRun(RockTest):
         return self.record
 
     def _accept_stored(self, stored: dict) -> dict | None:
-        # (a cached premature halt of an older version of this study is run again)
-        if stored.get("case") == dataclasses.asdict(self.case) and not premature_halt(stored):
+        # (a cached premature halt of an older version of this study is run again; a 2D
+        # result stored before cases had a dim is the same 2D case)
+        if ({"dim": 2} | stored.get("case", {})) == dataclasses.asdict(self.case) and \
+                not premature_halt(stored):
+            stored["case"] = dataclasses.asdict(self.case)
             stored["cached"] = True
             return stored
         return None
@@ -117,9 +129,9 @@ def premature_halt(res: dict) -> bool:
 
 def run_record(case: Case, result: RunResult, plan: RunPlan, lattice: Lattice, rock: Rock,
                d: float) -> dict:
-    """The result record of one finished LAMMPS run of the study (2D): its cost, and E, nu,
-    the strength and the viscous offset, or the error that stopped it."""
-    dim = 2
+    """The result record of one finished LAMMPS run of the study: its cost, and E, nu, the
+    strength and the viscous offset (with its 2D estimate), or the error that stopped it."""
+    dim = case.dim
     loops = _LOOP.findall(result.output)
     steps_run = int(loops[-1][1]) if loops else 0
     res: dict = {"case": dataclasses.asdict(case), "name": case.name, "particles": lattice.n,
@@ -146,7 +158,9 @@ def run_record(case: Case, result: RunResult, plan: RunPlan, lattice: Lattice, r
         # the half between a platen and the middle adds eta * sum(v) to the platen force,
         # eta * speed * H / (2 sqrt3 d^2) per unit area (2D hexagonal packing, 2/(sqrt3 d^2)
         # particles per unit area, mean speed speed/2 over H/2)
-        res["viscous_estimate"] = plan.eta * plan.speed * lattice.height / (2 * math.sqrt(3) * d * d)
+        if dim == 2:
+            res["viscous_estimate"] = (plan.eta * plan.speed * lattice.height /
+                                       (2 * math.sqrt(3) * d * d))
     except (RuntimeError, ValueError) as exc:
         res["error"] = str(exc)[:300]
     return res
@@ -212,7 +226,8 @@ def add_errors(res: dict, refs: dict) -> dict:
 
 
 def lattice_stability(s: Settings, run: Runner) -> dict:
-    """Largest stable time step of the lattice (elastic test, constant schedule, walls 2 Kn)."""
+    """Largest stable time step of the 2D lattice (elastic test, constant schedule, walls
+    2 Kn)."""
     rock = get_rock("quartz")
     bond = rock_to_bond(rock.E, rock.nu, rock.Tu, rock.Cu, rock.mu_i, 1e-3, 2)
     m = lattice_mass(rock.rho, 1e-3, 2)
@@ -240,14 +255,26 @@ def lattice_stability(s: Settings, run: Runner) -> dict:
             math.sqrt(m / bond.Kn)}
 
 
+def check_reference_case(s: Settings, test: str) -> Case:
+    """The reference run of the transfer check: a slow constant run
+    (``s.check_reference_crossings``, damping 1) or, when that is None, the papers' stepwise
+    schedule at the check's size."""
+    if s.check_reference_crossings is None:
+        return Case("check", test, s.n_check, schedule="stepwise",
+                    relax_steps=paper_relax(s.dim), dim=s.dim)
+    return Case("check", test, s.n_check, crossings=s.check_reference_crossings, dim=s.dim)
+
+
 def run_lattice(s: Settings, out: Path, reuse: bool) -> dict:
-    """Part 2 and 3: the sweeps, the references, the recommendation and its check."""
+    """Part 2 and 3 (2D) or the 3D part: the sweeps, the references, the recommendation and
+    its check."""
     run = Runner(out, reuse)
     cases = lattice_cases(s)
-    print(f"lattice: {len(cases)} runs in the main sweep (2D quartz; elastic N = {s.n_elastic}, "
-          f"strength N = {s.n_strength}), one rank", flush=True)
+    what = (f"2D quartz; elastic N = {s.n_elastic}, strength N = {s.n_strength}" if s.dim == 2
+            else f"3D quartzite; elastic n_y = {s.n_elastic}, strength n_y = {s.n_strength}")
+    print(f"lattice: {len(cases)} runs in the main sweep ({what}), one rank", flush=True)
     results = [run(c) for c in cases]
-    stability = lattice_stability(s, run)
+    stability = lattice_stability(s, run) if s.stability else None
 
     refs: dict = {}
     paper = {}
@@ -256,22 +283,24 @@ def run_lattice(s: Settings, out: Path, reuse: bool) -> dict:
             paper[r["case"]["test"]] = r
             if r["case"]["test"] != "elastic":
                 refs["Tu" if r["case"]["test"] == "tension" else "Cu"] = r["strength"]
-    for r in results + stability["rows"]:
+    for r in results + (stability["rows"] if stability else []):
         r["errors"] = add_errors(r, refs)
     paper_err = {q: paper[TEST_OF[q]]["errors"].get(q, 0.0) if TEST_OF[q] in paper else 0.0
                  for q in QUANTITIES}
 
     grid = constant_grid(results)
     candidates = recommend(grid, paper_err, TOLERANCE)
-    # transfer check on another block: candidates against a slow constant run (the
-    # papers' schedule at that size would cost ~20 min per test); first candidate that passes
+    # transfer check on another block: candidates against the check's reference (2D: a slow
+    # constant run, the papers' schedule at N = 30 would cost ~20 min per test; 3D: the
+    # papers' schedule); first candidate that passes
     checks = []
     chosen = None
-    ref_check = {t: run(Case("check", t, s.n_check, crossings=s.check_reference_crossings))
-                 for t in ("tension", "compression")}
-    default_check = {t: run(Case("check", t, s.n_check, **DEFAULT)) for t in ref_check}
+    ref_check = {t: run(check_reference_case(s, t)) for t in ("tension", "compression")}
+    default_check = {t: run(Case("check", t, s.n_check, **s.default_for(t), dim=s.dim))
+                     for t in ref_check}
     for c, f, _ in candidates[:3]:
-        rows = {t: run(Case("check", t, s.n_check, crossings=c, damping=f)) for t in ref_check}
+        rows = {t: run(Case("check", t, s.n_check, crossings=c, damping=f, dim=s.dim))
+                for t in ref_check}
         errs = {}
         for t, r in rows.items():
             q = "Tu" if t == "tension" else "Cu"
@@ -290,10 +319,11 @@ def run_lattice(s: Settings, out: Path, reuse: bool) -> dict:
                       if r["ok"] else None,
                       "default": (default_check[t]["strength"] / r["strength"] - 1.0)
                       if default_check[t]["ok"] and r["ok"] else None,
-                      "ref_steps": r["steps"], "default_steps": default_check[t]["steps"]}
-    return {"results": results, "stability": stability, "refs": refs, "paper": paper,
-            "paper_err": paper_err, "grid": grid, "candidates": candidates, "checks": checks,
-            "check_ref": ref_err, "chosen": chosen, "seconds": run.seconds,
+                      "ref_steps": r["steps"], "default_steps": default_check[t]["steps"],
+                      "ref_wall_s": r["wall_s"]}
+    return {"dim": s.dim, "results": results, "stability": stability, "refs": refs,
+            "paper": paper, "paper_err": paper_err, "grid": grid, "candidates": candidates,
+            "checks": checks, "check_ref": ref_err, "chosen": chosen, "seconds": run.seconds,
             "total_seconds": sum(r["wall_s"] for r in run.memo.values()),
             "total_steps": sum(r["steps"] for r in run.memo.values()),
             "runs": len(run.memo)}

@@ -9,7 +9,7 @@ import numpy as np
 from ..plotting import save_png
 from .fitting import pareto_front, within
 from .lattice_runs import points
-from .settings import DEFAULT, QUANTITIES, TEST_OF, TOLERANCE
+from .settings import DEFAULT, DT_BASE, QUANTITIES, TEST_OF, TOLERANCE
 
 def _plt():
     import matplotlib
@@ -87,8 +87,22 @@ def plot_contact(res: dict, path: Path) -> None:
     _save(fig, path)
 
 
-def plot_constant(lat: dict, path: Path) -> None:
-    """The constant schedule's error in E, nu, Tu and Cu against crossings, per damping."""
+def _per_test(default: dict | None) -> dict[str, tuple[float, float]] | None:
+    """A default setting as {test: (crossings, damping)}: ``default`` is one setting
+    ({"crossings", "damping"}) for every test, or already such a mapping."""
+    if default is None:
+        return None
+    if "crossings" in default:
+        return {t: (default["crossings"], default["damping"]) for t in set(TEST_OF.values())}
+    return default
+
+
+def plot_constant(lat: dict, path: Path, default: dict = DEFAULT,
+                  title: str = "constant schedule: error against loading rate and damping"
+                  ) -> None:
+    """The constant schedule's error in E, nu, Tu and Cu against crossings, per damping
+    (dashed: the ``default`` setting's crossings, one for all tests or per test kind)."""
+    per_test = _per_test(default)
     plt = _plt()
     fig, axes = plt.subplots(2, 2, figsize=(10, 7.5))
     dampings = sorted({k[1] for k in lat["grid"]})
@@ -106,7 +120,7 @@ def plot_constant(lat: dict, path: Path) -> None:
         band = 100 * TOLERANCE[q]
         ax.axhspan(pe - band, pe + band, color="r", alpha=0.07,
                    label=f"papers' accuracy (their value +-{band:g}%)")
-        ax.axvline(DEFAULT["crossings"], color="0.6", lw=0.8, ls="--")
+        ax.axvline(per_test[TEST_OF[q]][0], color="0.6", lw=0.8, ls="--")
         ref = "formula" if q in ("E", "nu") else "papers' schedule"
         ax.set_title(f"{q}: error against the {ref}", fontsize=10)
         ax.set_xlabel("elastic-wave crossings to failure (constant speed)")
@@ -114,12 +128,17 @@ def plot_constant(lat: dict, path: Path) -> None:
         lo = min(-abs(pe) - 4 * band, -1.5)
         ax.set_ylim(max(ax.get_ylim()[0], lo * 4), min(ax.get_ylim()[1], -lo * 4))
     axes[0, 0].legend(fontsize=6.5, ncol=2)
-    _save(fig, path, "constant schedule: error against loading rate and damping")
+    _save(fig, path, title)
 
 
-def plot_pareto(lat: dict, path: Path, floor: float = 1e-5) -> None:
+def plot_pareto(lat: dict, path: Path, floor: float = 1e-5,
+                default: dict | None = None,
+                title: str = "error against cost: all runs, Pareto front, the papers' schedule"
+                ) -> None:
     """Error against time steps of every run, with the Pareto fronts (|errors| below
-    ``floor`` drawn at it)."""
+    ``floor`` drawn at it) and, if given, the runs of the ``default`` setting marked (one
+    setting for all tests, or {test: (crossings, damping)})."""
+    per_test = _per_test(default)
     plt = _plt()
     fig, axes = plt.subplots(2, 2, figsize=(10.5, 8))
     for ax, q in zip(axes.ravel(), QUANTITIES):
@@ -150,12 +169,18 @@ def plot_pareto(lat: dict, path: Path, floor: float = 1e-5) -> None:
         good = [p for p in pts if within(p["errors"][q], lat["paper_err"][q], TOLERANCE[q])]
         ax.loglog([p["steps"] for p in good], [max(abs(p["errors"][q]), floor) for p in good],
                   "o", mfc="none", mec="k", ms=9, ls="none", label="at the papers' accuracy")
+        if per_test is not None:
+            mine = [p for p in pts if p["case"]["family"] in ("constant", "slow") and
+                    (p["case"]["crossings"], p["case"]["damping"]) == per_test[TEST_OF[q]]]
+            ax.loglog([p["steps"] for p in mine], [max(abs(p["errors"][q]), floor) for p in mine],
+                      "s", mfc="none", mec="b", ms=12, mew=1.5, ls="none",
+                      label="the package's default")
         pe = abs(lat["paper_err"][q])
         ax.axhspan(max(pe - TOLERANCE[q], floor), pe + TOLERANCE[q], color="r", alpha=0.07)
         ref = "formula" if q in ("E", "nu") else "papers' schedule (its own point: 0)"
         _axes_text(ax, f"{q}: |error| against the {ref}", 9.5, "time steps", "|error|")
     axes[0, 0].legend(fontsize=6.5)
-    _save(fig, path, "error against cost: all runs, Pareto front, the papers' schedule")
+    _save(fig, path, title)
 
 
 def plot_stepwise(lat: dict, path: Path) -> None:
@@ -198,7 +223,7 @@ def plot_lattice_dt(lat: dict, path: Path) -> None:
         rows = [r for r in lat["results"] if r["case"]["test"] == "elastic" and r["ok"]
                 and ((r["case"]["family"] == "dt") or (r["case"]["family"] == "constant" and
                      (r["case"]["crossings"], r["case"]["damping"]) ==
-                     (DEFAULT["crossings"], DEFAULT["damping"])))]
+                     (DT_BASE["crossings"], DT_BASE["damping"])))]
         rows.sort(key=lambda r: r["plan"]["dt"])
         fr = [r["case"]["dt_fraction"] or 0.1 for r in rows]
         ax.semilogx(fr, [100 * r["errors"][q] for r in rows], "o-", color=color,
@@ -214,7 +239,8 @@ def plot_lattice_dt(lat: dict, path: Path) -> None:
     ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel("dt / sqrt(m/Kn)")
     ax.set_ylabel("error against the formula (%)")
-    ax.set_title("elastic test, 100 crossings: error against dt (stable runs)", fontsize=10)
+    ax.set_title(f"elastic test, {DT_BASE['crossings']:g} crossings: error against dt "
+                 "(stable runs)", fontsize=10)
     ax.legend(fontsize=7)
     ax = axes[1]
     rows = lat["stability"]["rows"]

@@ -13,9 +13,11 @@ from .fitting import speedup, within
 from .lattice_runs import points
 from .plots import plot_constant, plot_contact, plot_lattice_dt, plot_pareto, plot_stepwise
 from .recommendation import recommendation_section
+from .report_3d import section_3d, summary_lines
+from .report_defaults import front_text
 from .report_fronts import fronts_section
 from .report_lattice import lattice_section
-from .settings import DEFAULT, QUANTITIES, TEST_OF, TOLERANCE, Case, Settings
+from .settings import QUANTITIES, TEST_OF, TOLERANCE, Case, Settings
 from .text import pct as _pct
 
 
@@ -36,12 +38,14 @@ def verdict(lat: dict) -> dict:
 
 
 def write_doc(doc: Path, cmd: str, s: Settings, quick: bool, contact: dict, lat: dict,
-              elapsed: float, root: Path) -> None:
+              elapsed: float, root: Path, s3: Settings | None = None,
+              lat3: dict | None = None) -> None:
     """Write the report ``doc`` and its plots (in ``img/`` beside it).
 
     cmd: the command line that made it; contact, lat: the results of parts 1 and 2
     (:func:`~.contact.run_contact`, :func:`~.lattice_runs.run_lattice`); elapsed: this
-    invocation's seconds; root: the repository whose commit the header names.
+    invocation's seconds; root: the repository whose commit the header names; s3, lat3:
+    the 3D part's settings and runs (part 4), if made.
     """
     img = doc.parent / "img"
     img.mkdir(parents=True, exist_ok=True)
@@ -50,24 +54,29 @@ def write_doc(doc: Path, cmd: str, s: Settings, quick: bool, contact: dict, lat:
     plot_contact(contact, img / names["single_contact"])
     plot_constant(lat, img / names["constant"])
     plot_stepwise(lat, img / names["stepwise"])
-    plot_pareto(lat, img / names["pareto"])
+    plot_pareto(lat, img / names["pareto"], default=s.default)
     plot_lattice_dt(lat, img / names["lattice_dt"])
     rel = os.path.relpath(img, doc.parent)
 
     V = verdict(lat)
     by_name = {r["name"]: r for r in lat["results"]}
     L: list[str] = []
-    overview_section(L, cmd, quick, contact, lat, V, elapsed, root, rel, names)
+    overview_section(L, cmd, quick, contact, lat, V, elapsed, root, rel, names, s, s3, lat3)
     lattice_section(L, s, quick, lat, by_name, rel, names)
     fronts_section(L, s, lat, V, by_name, rel, names)
     recommendation_section(L, s, lat, V, by_name)
     add = L.append
+    add("**The 2D default on the Pareto front.**  " + front_text(s, lat, by_name))
+    add("")
+    if s3 is not None and lat3 is not None:
+        section_3d(L, s3, lat3, verdict(lat3), rel, img)
     add("## Reproduce")
     add("")
     add("```")
     add("python bench/speed_error.py            # full study (this report)")
     add("python bench/speed_error.py --reuse    # rewrite the report from the cached runs")
     add("python bench/speed_error.py --quick    # small blocks, a few minutes (not this report)")
+    add("python bench/speed_error.py --no-3d    # without part 4 (the 3D lattice)")
     add("```")
     add("")
     add("The quantities are measured as in docs/validation.md (`bonded_lattice.analysis`: "
@@ -77,9 +86,10 @@ def write_doc(doc: Path, cmd: str, s: Settings, quick: bool, contact: dict, lat:
 
 
 def overview_section(L: list[str], cmd: str, quick: bool, contact: dict, lat: dict, V: dict,
-                     elapsed: float, root: Path, rel: str, names: dict[str, str]) -> None:
+                     elapsed: float, root: Path, rel: str, names: dict[str, str],
+                     s: Settings, s3: Settings | None, lat3: dict | None) -> None:
     """The title, the provenance, the summary and part 1 (the single-contact tests),
-    appended to ``L``."""
+    appended to ``L`` (s3, lat3: the 3D part, if made)."""
     st = contact["stability"]
     add = L.append
     add = L.append
@@ -90,22 +100,29 @@ def overview_section(L: list[str], cmd: str, quick: bool, contact: dict, lat: di
     add(f"Date {time.strftime('%Y-%m-%d %H:%M')}, commit {commit.rstrip('+')}"
         f"{' (with uncommitted changes)' if commit.endswith('+') else ''}, "
         f"machine: {machine(load=True)}.  ")
-    add(f"Compute: {lat['runs']} lattice runs, {lat['total_steps']:.3g} time steps, "
-        f"{lat['total_seconds'] / 60:.1f} min of wall time, plus "
+    add(f"Compute: {lat['runs']} 2D lattice runs, {lat['total_steps']:.3g} time steps, "
+        f"{lat['total_seconds'] / 60:.1f} min of wall time, " +
+        (f"{lat3['runs']} 3D lattice runs, {lat3['total_steps']:.3g} time steps, "
+         f"{lat3['total_seconds'] / 60:.1f} min, " if lat3 else "") + "plus "
         f"{contact.get('seconds', 0.0):.0f} s for the single-contact tests; this "
-        f"invocation took {elapsed / 60:.1f} min ({lat['seconds'] / 60:.1f} min of lattice runs "
+        f"invocation took {elapsed / 60:.1f} min "
+        f"({(lat['seconds'] + (lat3['seconds'] if lat3 else 0.0)) / 60:.1f} min of lattice runs "
         "not taken from the cache).  Every simulation on one MPI rank, one at a time; the runs "
         "(deck, log, result.json) are cached in the `--out` folder.  Time steps and "
         "particle-steps are the cost axes; wall times are secondary (a shared machine: "
         "another job used the other core).")
     add("")
     add("Rock: the papers' quartz (E 90 GPa, nu 0.16, Tu 25 MPa, Cu 252 MPa, mu_i 1, rho "
-        "2650), 1 mm particles, 2D blocks of the papers (Liu 2013).")
+        "2650), 1 mm particles, 2D blocks of the papers (Liu 2013)" +
+        ("; in part 4 the 2017 paper's quartzite (the same values), 3D blocks (Liu 2017)."
+         if lat3 else "."))
     add("")
 
     # ---------------- summary ----------------
     add("## Summary")
     add("")
+    for line in summary_lines(s, lat, s3, lat3):
+        add(line)
     o1 = contact["orders"]
     add(f"- **Convergence order** (single contact, velocity Verlet, fitted over "
         f"{len(contact['dts'])} dt a factor 2 apart): " + ", ".join(
@@ -151,11 +168,11 @@ def overview_section(L: list[str], cmd: str, quick: bool, contact: dict, lat: di
             "slower setting too.")
     if lat["chosen"]:
         c, f = lat["chosen"]
-        add(f"- **Recommended defaults**: `--crossings {c:g} --damping {f:g}` (now "
-            f"{DEFAULT['crossings']:g} and {DEFAULT['damping']:g}); see the last section.")
+        add(f"- **Recommended 2D defaults**: `--crossings {c:g} --damping {f:g}` (the package's "
+            f"2D default: {s.default['crossings']:g} and {s.default['damping']:g}); see part 3.")
     else:
-        add("- **Recommended defaults**: none of the grid's settings passed every test; keep the "
-            "current defaults (see the last section).")
+        add("- **Recommended 2D defaults**: none of the grid's settings passed every test; "
+            "keep the package's defaults (see part 3).")
     add("")
 
     # ---------------- part 1 ----------------

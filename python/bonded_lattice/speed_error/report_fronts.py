@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from .fitting import pareto_front, speedup, within
 from .lattice_runs import points
-from .settings import LEVELS, QUANTITIES, TEST_OF, TOLERANCE, Case, Settings
+from .settings import LEVELS, QUANTITIES, TEST_OF, TOLERANCE, Case, Settings, grid_case
 from .text import cost as _cost
 from .text import pct as _pct
 
@@ -25,40 +25,7 @@ def fronts_section(L: list[str], s: Settings, lat: dict, V: dict, by_name: dict[
         "loading error cancels part of it looks best there; the second table of each ranks "
         "the runs by their deviation from the papers' schedule instead (dashed in the plot).")
     add("")
-    for q in QUANTITIES:
-        pts = points(res, q)
-        if not pts:
-            continue
-        ps = lat["paper"][TEST_OF[q]]["steps"] if TEST_OF[q] in lat["paper"] else None
-        front = [pts[i] for i in pareto_front([p["steps"] for p in pts],
-                                              [abs(p["errors"][q]) for p in pts])]
-        add(f"**{q}**" + (" (error against the formula)" if q in ("E", "nu") else ""))
-        add("")
-        add("| setting | time steps | particle-steps | wall (s) | error | speed-up | "
-            "papers' accuracy |")
-        add("|---|---|---|---|---|---|---|")
-        if q in ("E", "nu"):
-            # the front of the loading error, |error - papers' error|, below it
-            dev = [pts[i] for i in pareto_front(
-                [p["steps"] for p in pts],
-                [abs(p["errors"][q] - lat["paper_err"][q]) for p in pts])]
-            front = front + [None] + dev
-        for p in front:
-            if p is None:
-                add("")
-                add(f"**{q}** (deviation from the papers' schedule, |error - "
-                    f"({_pct(lat['paper_err'][q], 3)})|: the loading's own error, without "
-                    "the block's size effect; the column shows the error against the formula)")
-                add("")
-                add("| setting | time steps | particle-steps | wall (s) | error | speed-up | "
-                    "papers' accuracy |")
-                add("|---|---|---|---|---|---|---|")
-                continue
-            add(f"| {Case(**p['case']).label()} | {_cost(p)} | {_pct(p['errors'][q], 3)} | "
-                f"{speedup(ps, p['steps']):.1f}x | "
-                f"{'yes' if within(p['errors'][q], lat['paper_err'][q], TOLERANCE[q]) else 'no'} |"
-                if ps else "")
-        add("")
+    front_tables(L, lat)
     add(f"![Pareto fronts]({rel}/{names['pareto']})")
     add("")
     add("Cheapest run within a given error (E, nu against the formulas, Tu, Cu against the "
@@ -97,9 +64,7 @@ def fronts_section(L: list[str], s: Settings, lat: dict, V: dict, by_name: dict[
     both = []
     for (c, f), errs in sorted(grid.items()):
         if all(within(errs.get(q), lat["paper_err"][q], TOLERANCE[q]) for q in QUANTITIES):
-            steps = {t: by_name.get(Case("constant" if c in set(s.crossings) else "slow", t,
-                                         s.n_elastic if t == "elastic" else s.n_strength,
-                                         crossings=c, damping=f).name) for t in pe}
+            steps = {t: by_name.get(grid_case(s, t, c, f).name) for t in pe}
             if all(r and r["steps"] * 10 <= pe[t]["steps"] for t, r in steps.items()):
                 both.append((c, f, min(pe[t]["steps"] / r["steps"] for t, r in steps.items())))
     add("")
@@ -142,3 +107,44 @@ def fronts_section(L: list[str], s: Settings, lat: dict, V: dict, by_name: dict[
     add("")
     add(f"![lattice time step]({rel}/{names['lattice_dt']})")
     add("")
+
+
+def front_tables(L: list[str], lat: dict) -> None:
+    """Per quantity, the Pareto front of all runs of the main sweep (error against the
+    quantity's reference; for E and nu also the front of the deviation from the papers'
+    schedule), appended to ``L``."""
+    add, res = L.append, lat["results"]
+    for q in QUANTITIES:
+        pts = points(res, q)
+        if not pts:
+            continue
+        ps = lat["paper"][TEST_OF[q]]["steps"] if TEST_OF[q] in lat["paper"] else None
+        front = [pts[i] for i in pareto_front([p["steps"] for p in pts],
+                                              [abs(p["errors"][q]) for p in pts])]
+        add(f"**{q}**" + (" (error against the formula)" if q in ("E", "nu") else ""))
+        add("")
+        add("| setting | time steps | particle-steps | wall (s) | error | speed-up | "
+            "papers' accuracy |")
+        add("|---|---|---|---|---|---|---|")
+        if q in ("E", "nu"):
+            # the front of the loading error, |error - papers' error|, below it
+            dev = [pts[i] for i in pareto_front(
+                [p["steps"] for p in pts],
+                [abs(p["errors"][q] - lat["paper_err"][q]) for p in pts])]
+            front = front + [None] + dev
+        for p in front:
+            if p is None:
+                add("")
+                add(f"**{q}** (deviation from the papers' schedule, |error - "
+                    f"({_pct(lat['paper_err'][q], 3)})|: the loading's own error, without "
+                    "the block's size effect; the column shows the error against the formula)")
+                add("")
+                add("| setting | time steps | particle-steps | wall (s) | error | speed-up | "
+                    "papers' accuracy |")
+                add("|---|---|---|---|---|---|---|")
+                continue
+            add(f"| {Case(**p['case']).label()} | {_cost(p)} | {_pct(p['errors'][q], 3)} | "
+                f"{speedup(ps, p['steps']):.1f}x | "
+                f"{'yes' if within(p['errors'][q], lat['paper_err'][q], TOLERANCE[q]) else 'no'} |"
+                if ps else "")
+        add("")

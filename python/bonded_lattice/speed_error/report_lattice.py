@@ -5,7 +5,9 @@ stepwise schedule's variants, the runs that failed, and why Cu overshoots at spe
 from __future__ import annotations
 
 from .fitting import within
-from .settings import DEFAULT, QUANTITIES, TEST_OF, TOLERANCE, Case, Settings
+from .report_defaults import converged_text
+from .settings import (DT_BASE, QUANTITIES, TEST_OF, TOLERANCE, Case, Settings, grid_case,
+                       paper_relax, test_n)
 from .text import cost as _cost
 from .text import pct as _pct
 
@@ -33,7 +35,7 @@ def lattice_section(L: list[str], s: Settings, quick: bool, lat: dict,
         "and Cu: error against the strength the papers' stepwise schedule measures at the same "
         "N (the multi-unit lattice is 5-15% weaker than the formulas, docs/validation.md; that "
         "deficit is the lattice's, not the loading's); the error against the formula is listed "
-        "too.  A run **reaches the papers' accuracy** for a quantity when it measures what the "
+        f"too.  That reference is {converged_text(s, lat, by_name)}.  A run **reaches the papers' accuracy** for a quantity when it measures what the "
         "papers' schedule measures to within a tolerance, |error - error of the papers' "
         "schedule| <= tolerance (the block's size effect is in both; a fast run whose loading "
         "error happens to cancel part of it is not more accurate), tolerance " + ", ".join(
@@ -47,32 +49,14 @@ def lattice_section(L: list[str], s: Settings, quick: bool, lat: dict,
     add("")
     add("### The papers' stepwise schedule (reference points)")
     add("")
-    add("| test | N | particles | step size (m) | relax steps | time steps | particle-steps | "
-        "wall (s) | measured | error against the formula |")
-    add("|---|---|---|---|---|---|---|---|---|---|")
-    for test in ("elastic", "tension", "compression"):
-        if test not in pe:
-            add(f"| {test} | failed | | | | | | | | |")
-            continue
-        r = pe[test]
-        if test == "elastic":
-            meas = f"E {r['E'] / 1e9:.4f} GPa, nu {r['nu']:.5f}"
-            ferr = f"E {_pct(r['errors']['E'], 3)}, nu {_pct(r['errors']['nu'], 3)}"
-        else:
-            q = "Tu" if test == "tension" else "Cu"
-            meas = f"{q} {r['strength'] / 1e6:.3f} MPa"
-            ferr = _pct(r["errors"][q + "_formula"])
-        add(f"| {test} | {r['case']['n']} | {r['particles']} | {r['plan']['step_size']:.3g} | "
-            f"{r['plan']['relax_steps']} | {_cost(r)} | {meas} | {ferr} |")
-    add("")
-
+    paper_table(L, lat, "N")
     # scatter: same loading, other dt; the papers' schedule with one factor 4 cheaper
     spread = []
     for q in ("Tu", "Cu"):
         vals = [r["errors"].get(q) for r in res if r["case"]["test"] == TEST_OF[q] and r["ok"]
                 and (r["case"]["family"] == "dt" or (r["case"]["family"] == "constant" and
                      (r["case"]["crossings"], r["case"]["damping"]) ==
-                     (DEFAULT["crossings"], DEFAULT["damping"])))]
+                     (DT_BASE["crossings"], DT_BASE["damping"])))]
         vals = [v for v in vals if v is not None]
         near = [by_name.get(Case("stepwise", TEST_OF[q], s.n_strength, schedule="stepwise",
                                  relax_steps=rr, step_factor=ff).name)
@@ -97,6 +81,87 @@ def lattice_section(L: list[str], s: Settings, quick: bool, lat: dict,
         "schedule); **bold**: within the papers' accuracy.  Time steps per test in the last "
         "columns.")
     add("")
+    grid_tables(L, s, lat, by_name)
+    crossings = sorted({c for c, _ in lat["grid"]})
+    add("Strength against the formulas, same runs, damping 1: " + "; ".join(
+        f"{q} " + ", ".join(f"{c:g}: {_pct(r['errors'].get(q + '_formula'))}"
+                            for c in crossings
+                            for r in [by_name.get(grid_case(s, TEST_OF[q], c, 1.0).name)]
+                            if r and r["ok"]) for q in ("Tu", "Cu")) + ".")
+    add("")
+    add(f"![constant schedule: error against crossings and damping]({rel}/{names['constant']})")
+    add("")
+    add(viscous_text(res, s))
+    add("")
+    add("Time step of the constant schedule (100 crossings, damping 1): the loading is the "
+        "same, so the time steps scale as 1/dt.")
+    add("")
+    add("| dt / sqrt(m/Kn) | " + " | ".join(f"{q} error | {TEST_OF[q]} steps" for q in QUANTITIES)
+        + " |")
+    add("|---|" + "---|---|" * len(QUANTITIES))
+    for fr in sorted(set(s.dt_fractions) | {0.1}):
+        cells = []
+        for q in QUANTITIES:
+            n = s.n_elastic if q in ("E", "nu") else s.n_strength
+            case = Case("dt", TEST_OF[q], n, dt_fraction=fr) if fr != 0.1 else \
+                Case("constant", TEST_OF[q], n, **DT_BASE)
+            r = by_name.get(case.name)
+            cells.append(f"{_pct(r['errors'].get(q)) if r and r['ok'] else 'failed'} | "
+                         f"{r['steps'] if r else ''}")
+        add(f"| {fr:g} | " + " | ".join(cells) + " |")
+    add("")
+    add("### The papers' stepwise schedule: relaxation steps and step size")
+    add("")
+    add("Each loading step moves each platen (end layer) by the step size (a multiple of the "
+        "papers' 6e-10 / 1.9e-10 / 1.9e-9 m for the elastic / tension / compression tests), "
+        "then the block relaxes for the given time steps at the papers' dt = 2e-8 s.")
+    add("")
+    stepwise_table(L, s, lat, by_name)
+    add(f"![stepwise schedule variants]({rel}/{names['stepwise']})")
+    add("")
+    odd = [r for r in res if r.get("halt_disabled") or not r["ok"]]
+    if odd:
+        add("Runs that failed or needed a second try:")
+        add("")
+        for r in odd:
+            why = (f"failed: {r['error']}" if not r["ok"] else
+                   "the deck's `fix halt` stopped it at its first thermo rows (after a jump of "
+                   "the platen the end particles bounce off it, the stress of that row is 0 and "
+                   "the peak so far is a round-off value, so |stress| < 0.3 peak); run again "
+                   f"without the halt, so its {r['steps']} time steps are the planned maximum")
+            add(f"- {Case(**r['case']).label()} ({r['case']['test']}, N = {r['case']['n']}): {why}.")
+        add("")
+
+
+def paper_table(L: list[str], lat: dict, size_name: str, unit: str = "particles") -> None:
+    """The papers' stepwise schedule's runs (the reference points), appended to ``L``;
+    ``size_name``: N (2D) or n_y (3D); ``unit``: particles (2D) or elements (3D)."""
+    add, pe = L.append, lat["paper"]
+    add(f"| test | {size_name} | {unit} | step size (m) | relax steps | time steps | particle-steps | "
+        "wall (s) | measured | error against the formula |")
+    add("|---|---|---|---|---|---|---|---|---|---|")
+    for test in ("elastic", "tension", "compression"):
+        if test not in pe:
+            add(f"| {test} | failed | | | | | | | | |")
+            continue
+        r = pe[test]
+        if test == "elastic":
+            meas = f"E {r['E'] / 1e9:.4f} GPa, nu {r['nu']:.5f}"
+            ferr = f"E {_pct(r['errors']['E'], 3)}, nu {_pct(r['errors']['nu'], 3)}"
+        else:
+            q = "Tu" if test == "tension" else "Cu"
+            meas = f"{q} {r['strength'] / 1e6:.3f} MPa"
+            ferr = _pct(r["errors"][q + "_formula"])
+        add(f"| {test} | {r['case']['n']} | {r['particles']} | {r['plan']['step_size']:.3g} | "
+            f"{r['plan']['relax_steps']} | {_cost(r)} | {meas} | {ferr} |")
+    add("")
+
+
+
+def grid_tables(L: list[str], s: Settings, lat: dict, by_name: dict[str, dict]) -> None:
+    """Per quantity, the constant grid's errors (crossings x damping; **bold** within the
+    papers' accuracy) and the time steps per test, appended to ``L``."""
+    add = L.append
     grid = lat["grid"]
     dampings = sorted({f for _, f in grid})
     crossings = sorted({c for c, _ in grid})
@@ -115,48 +180,17 @@ def lattice_section(L: list[str], s: Settings, quick: bool, lat: dict,
                     continue
                 txt = _pct(e)
                 cells.append(f"**{txt}**" if within(e, lat["paper_err"][q], TOLERANCE[q]) else txt)
-                r = by_name.get(Case("constant" if c in set(s.crossings) else "slow",
-                                     TEST_OF[q], s.n_elastic if q in ("E", "nu") else s.n_strength,
-                                     crossings=c, damping=f).name)
+                r = by_name.get(grid_case(s, TEST_OF[q], c, f).name)
                 if r and not steps:
                     steps = str(r["steps"])
             add(f"| {c:g} | " + " | ".join(cells) + f" | {steps} |")
         add("")
-    add("Strength against the formulas, same runs, damping 1: " + "; ".join(
-        f"{q} " + ", ".join(f"{c:g}: {_pct(r['errors'].get(q + '_formula'))}"
-                            for c in crossings
-                            for r in [by_name.get(Case("constant" if c in set(s.crossings) else
-                                                       "slow", TEST_OF[q], s.n_strength,
-                                                       crossings=c, damping=1.0).name)]
-                            if r and r["ok"]) for q in ("Tu", "Cu")) + ".")
-    add("")
-    add(f"![constant schedule: error against crossings and damping]({rel}/{names['constant']})")
-    add("")
-    add(viscous_text(res, s))
-    add("")
-    add("Time step of the constant schedule (100 crossings, damping 1): the loading is the "
-        "same, so the time steps scale as 1/dt.")
-    add("")
-    add("| dt / sqrt(m/Kn) | " + " | ".join(f"{q} error | {TEST_OF[q]} steps" for q in QUANTITIES)
-        + " |")
-    add("|---|" + "---|---|" * len(QUANTITIES))
-    for fr in sorted(set(s.dt_fractions) | {0.1}):
-        cells = []
-        for q in QUANTITIES:
-            n = s.n_elastic if q in ("E", "nu") else s.n_strength
-            case = Case("dt", TEST_OF[q], n, dt_fraction=fr) if fr != 0.1 else \
-                Case("constant", TEST_OF[q], n, **DEFAULT)
-            r = by_name.get(case.name)
-            cells.append(f"{_pct(r['errors'].get(q)) if r and r['ok'] else 'failed'} | "
-                         f"{r['steps'] if r else ''}")
-        add(f"| {fr:g} | " + " | ".join(cells) + " |")
-    add("")
-    add("### The papers' stepwise schedule: relaxation steps and step size")
-    add("")
-    add("Each loading step moves each platen (end layer) by the step size (a multiple of the "
-        "papers' 6e-10 / 1.9e-10 / 1.9e-9 m for the elastic / tension / compression tests), "
-        "then the block relaxes for the given time steps at the papers' dt = 2e-8 s.")
-    add("")
+
+
+def stepwise_table(L: list[str], s: Settings, lat: dict, by_name: dict[str, dict]) -> None:
+    """The stepwise schedule's variants (relaxation steps x step size): errors and time
+    steps per quantity, appended to ``L``."""
+    add = L.append
     add("| relax steps | step size x | " + " | ".join(f"{q} error | steps" for q in QUANTITIES)
         + " |")
     add("|---|---|" + "---|---|" * len(QUANTITIES))
@@ -164,10 +198,10 @@ def lattice_section(L: list[str], s: Settings, quick: bool, lat: dict,
         for sf in s.step_factors:
             cells = []
             for q in QUANTITIES:
-                n = s.n_elastic if q in ("E", "nu") else s.n_strength
-                fam = "paper" if (r_, sf) == (400, 1) else "stepwise"
+                n = test_n(s, TEST_OF[q])
+                fam = "paper" if (r_, sf) == (paper_relax(s.dim), 1) else "stepwise"
                 r = by_name.get(Case(fam, TEST_OF[q], n, schedule="stepwise", relax_steps=r_,
-                                     step_factor=sf).name)
+                                     step_factor=sf, dim=s.dim).name)
                 if r is None:
                     cells.append(" | ")
                     continue
@@ -178,20 +212,6 @@ def lattice_section(L: list[str], s: Settings, quick: bool, lat: dict,
                 cells.append(f"{txt} | {r['steps']}")
             add(f"| {r_} | {sf:g} | " + " | ".join(cells) + " |")
     add("")
-    add(f"![stepwise schedule variants]({rel}/{names['stepwise']})")
-    add("")
-    odd = [r for r in res if r.get("halt_disabled") or not r["ok"]]
-    if odd:
-        add("Runs that failed or needed a second try:")
-        add("")
-        for r in odd:
-            why = (f"failed: {r['error']}" if not r["ok"] else
-                   "the deck's `fix halt` stopped it at its first thermo rows (after a jump of "
-                   "the platen the end particles bounce off it, the stress of that row is 0 and "
-                   "the peak so far is a round-off value, so |stress| < 0.3 peak); run again "
-                   f"without the halt, so its {r['steps']} time steps are the planned maximum")
-            add(f"- {Case(**r['case']).label()} ({r['case']['test']}, N = {r['case']['n']}): {why}.")
-        add("")
 
 
 def viscous_text(res: list[dict], s: Settings) -> str:

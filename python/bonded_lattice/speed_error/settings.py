@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..schedules import DEFAULT_LOADING, PAPER_SCHEDULES, default_loading
+
 # accuracy that counts as "the papers' accuracy": a setting reaches it for quantity q when
 # |error_q - error_q of the papers' schedule| <= TOLERANCE[q], i.e. it measures what the
 # papers' schedule measures to within the tolerance (errors of E, nu against the formulas, of
@@ -17,7 +19,20 @@ LEVELS = [0.001, 0.002, 0.005, 0.01, 0.02]
 QUANTITIES = ("E", "nu", "Tu", "Cu")
 TEST_OF = {"E": "elastic", "nu": "elastic", "Tu": "tension", "Cu": "compression"}
 PAPER_KEY = {"relax_steps": 400, "step_factor": 1.0}   # the papers' 2D schedule (docs/theory.md)
-DEFAULT = {"crossings": 100.0, "damping": 1.0}        # the deck generators' current defaults
+DEFAULT = DEFAULT_LOADING[2]        # the deck generators' 2D defaults (schedules.py)
+# the constant setting of the time-step variants (family dt) and of the stability scan: the
+# 2D defaults when this study was first made
+DT_BASE = {"crossings": 100.0, "damping": 1.0}
+# the rock of each dimension: the papers' quartz (2013, 2D) and quartzite (2017, 3D), the
+# same values (rocks.py)
+ROCK_OF = {2: "quartz", 3: "quartzite"}
+
+
+def paper_relax(dim: int) -> int:
+    """Relaxation steps of the papers' stepwise schedule in ``dim`` D (PAPER_SCHEDULES)."""
+    if dim not in PAPER_SCHEDULES:
+        raise ValueError(f"dim = {dim} is out of range: need 2 or 3")
+    return int(PAPER_SCHEDULES[dim]["relax_steps"])
 
 
 @dataclass(frozen=True)
@@ -39,7 +54,29 @@ class Settings:
     contact_dts: tuple[float, ...]
     contact_tests: tuple[str, ...]
     contact_bisect_rel: float
-    check_reference_crossings: float   # slow constant run: the reference of the check
+    # the reference of the transfer check: a slow constant run at these crossings (damping 1),
+    # or None: the papers' stepwise schedule at the check's size
+    check_reference_crossings: float | None
+    dim: int = 2                   # 2D quartz or 3D quartzite (block sizes: n_y in 3D)
+    stability: bool = True         # also the lattice's time-step scan
+
+    def __post_init__(self) -> None:
+        paper_relax(self.dim)      # (validates dim)
+
+    @property
+    def size_name(self) -> str:
+        """The block size's name: N (particles across, 2D) or n_y (elements along y, 3D)."""
+        return "N" if self.dim == 2 else "n_y"
+
+    @property
+    def default(self) -> dict[str, float]:
+        """The package's constant-schedule defaults in this dimension (DEFAULT_LOADING)."""
+        return DEFAULT_LOADING[self.dim]
+
+    def default_for(self, test: str) -> dict[str, float]:
+        """The package's default of ``test`` in this dimension (schedules.default_loading:
+        DEFAULT_LOADING with the per-test crossings)."""
+        return default_loading(self.dim, test)
 
 
 FULL = Settings(
@@ -80,11 +117,12 @@ class Case:
     dt_fraction: float | None = None   # None: the schedule's own (0.1 / 0.107 sqrt(m/Kn))
     relax_steps: int = 400
     step_factor: float = 1.0
+    dim: int = 2           # 2: 2D quartz, n particles across; 3: 3D quartzite, n = n_y
 
     @property
     def name(self) -> str:
-        """The run's folder name (unique within a family)."""
-        base = f"{self.test}_n{self.n}"
+        """The run's folder name (unique within a family and a dimension)."""
+        base = f"{self.test}_n{self.n}" if self.dim == 2 else f"{self.test}_ny{self.n}"
         if self.schedule == "stepwise":
             base += f"_stepwise_r{self.relax_steps}_s{self.step_factor:g}"
         else:
@@ -107,21 +145,35 @@ class Case:
 def lattice_cases(s: Settings) -> list[Case]:
     """The main sweep: constant grid, slow and dt variants, the stepwise grid."""
     cases: list[Case] = []
+    dim = s.dim
+    paper = (paper_relax(dim), PAPER_KEY["step_factor"])
     for test in ("elastic", "tension", "compression"):
         n = s.n_elastic if test == "elastic" else s.n_strength
         for c in s.crossings:
             for f in s.dampings:
-                cases.append(Case("constant", test, n, crossings=c, damping=f))
+                cases.append(Case("constant", test, n, crossings=c, damping=f, dim=dim))
         for c in s.slow_crossings:
-            cases.append(Case("slow", test, n, crossings=c, damping=1.0))
+            cases.append(Case("slow", test, n, crossings=c, damping=1.0, dim=dim))
         for fr in s.dt_fractions:
-            cases.append(Case("dt", test, n, dt_fraction=fr))
+            cases.append(Case("dt", test, n, dt_fraction=fr, dim=dim))
         for r in s.relax:
             for sf in s.step_factors:
-                fam = "paper" if (r, sf) == (PAPER_KEY["relax_steps"], PAPER_KEY["step_factor"]) \
-                    else "stepwise"
-                cases.append(Case(fam, test, n, schedule="stepwise", relax_steps=r, step_factor=sf))
+                fam = "paper" if (r, sf) == paper else "stepwise"
+                cases.append(Case(fam, test, n, schedule="stepwise", relax_steps=r,
+                                  step_factor=sf, dim=dim))
     # cheap first: the stepwise runs with many relaxation steps come last
     return sorted(cases, key=lambda c: (c.schedule == "stepwise",
                                         c.relax_steps / c.step_factor if c.schedule == "stepwise"
                                         else c.crossings))
+
+
+def test_n(s: Settings, test: str) -> int:
+    """The block size of ``test`` in the main sweep of ``s``."""
+    return s.n_elastic if test == "elastic" else s.n_strength
+
+
+def grid_case(s: Settings, test: str, crossings: float, damping: float) -> Case:
+    """The main sweep's constant-schedule run of ``test`` at (crossings, damping): family
+    ``constant`` for the grid's crossings, ``slow`` for the slow ones."""
+    family = "constant" if crossings in set(s.crossings) else "slow"
+    return Case(family, test, test_n(s, test), crossings=crossings, damping=damping, dim=s.dim)

@@ -9,7 +9,7 @@ from ..plotting import convergence_png
 from .doc import DocContext, paper_pct, pct
 from .papers import paper_value
 from .geometry import section_factor
-from ..schedules import DEFAULT_LOADING
+from ..schedules import DEFAULT_LOADING, default_loading
 from .runner import PAPER_DAMPING_LOADING, Validation, rock_for
 from .section import Section
 
@@ -167,9 +167,16 @@ def doc_series(data: dict, ctx: DocContext) -> list[str]:
 
 
 def _defaults_text() -> str:
-    """The defaults in words, from :data:`~bonded_lattice.schedules.DEFAULT_LOADING`."""
-    return "; ".join(f"{dim}D {values['crossings']:g} crossings and eta x {values['damping']:g}"
-                     for dim, values in DEFAULT_LOADING.items())
+    """The strength tests' defaults in words, from
+    :func:`~bonded_lattice.schedules.default_loading`."""
+    parts = []
+    for dim in DEFAULT_LOADING:
+        per_test = {t: default_loading(dim, t) for t in ("tension", "compression")}
+        dampings = {d["damping"] for d in per_test.values()}
+        crossings = ", ".join(f"{d['crossings']:g} crossings in {t}" for t, d in per_test.items())
+        parts.append(f"{dim}D {crossings}" + (f" at eta x {next(iter(dampings)):g}"
+                                              if len(dampings) == 1 else ""))
+    return "; ".join(parts)
 
 
 def _free_face_fit(dim: str, rows: list[dict]) -> str:

@@ -242,7 +242,8 @@ def _energy_rows(results: dict) -> list[tuple[str, str, str, str, str]]:
         paper_text = "" if comp_paper is None else f"{comp_paper['event']['duration_s']:.2g} s"
         rows.append(("3D compression: the failure takes",
                      f"about {PAPER['3d.energy.compression.failure_duration_s'].value:.0e} s",
-                     paper_text, f"{comp['event']['duration_s']:.2g} s",
-                     "start to end of the breaking-heat burst; shorter also by the kinetic "
+                     paper_text, "",
+                     "start to end of the breaking-heat burst; under constant loading at "
+                     f"the papers' damping {comp['event']['duration_s']:.2g} s; shorter also by the kinetic "
                      "energy's burst (section 'Energy budget'): not explained"))
     return rows
