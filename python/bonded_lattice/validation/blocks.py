@@ -144,7 +144,7 @@ def doc_series(data: dict, ctx: DocContext) -> list[str]:
         L.append(f"Mean over the multi-unit sizes here: Tu {pct(means['Tu', False])} "
                  f"(outer area {pct(means['Tu', True])}; paper {paper_pct(f'{dim}d.multi.Tu')}),"
                  f" Cu {pct(means['Cu', False])} (outer area {pct(means['Cu', True])}; paper "
-                 f"{paper_pct(f'{dim}d.multi.Cu')}).")
+                 f"{paper_pct(f'{dim}d.multi.Cu')}).  " + _defaults_means(dim, rows))
         if dim == "2":
             n4 = next((r for r in rows if r["n"] == 4), None)
             if n4 is not None:
@@ -164,6 +164,18 @@ def doc_series(data: dict, ctx: DocContext) -> list[str]:
                         {k: paper_value(f"{dim}d.multi.{k}") for k in ("Tu", "Cu")})
         L += ["", f"![E, nu, Tu and Cu against particle count, {dim}D](img/convergence_{dim}d.png)"]
     return L
+
+
+def _defaults_means(dim: str, rows: list[dict]) -> str:
+    """The defaults columns' means over the multi-unit sizes that have them."""
+    parts = []
+    for key, test in (("Tu", "tension"), ("Cu", "compression")):
+        sel = [r for r in rows if r["n"] > 2 and f"{test}_defaults" in r]
+        if sel:
+            mean = float(np.mean([r[f"{test}_defaults"]["relative_error"][key] for r in sel]))
+            size = "N" if dim == "2" else "n_y"
+            parts.append(f"{key} {pct(mean)} ({size} = {sel[0]['n']}-{sel[-1]['n']})")
+    return f"Under the package's defaults: {', '.join(parts)}." if parts else ""
 
 
 def _defaults_text() -> str:
