@@ -164,8 +164,10 @@ def test_options(p: argparse.ArgumentParser, test: bool = True, choose_test: boo
         p.add_argument("--grips", choices=GRIPS, default=lib["grips"],
                        help="how a test that loads through the end layers (tension, --ends "
                        "layers) grips them: held (default: axial motion prescribed, free "
-                       "sideways), clamped (lateral motion fixed too) or springs (tied to moving "
-                       "smooth planes by axial springs of --platen-stiffness x Kn)")
+                       "sideways), clamped (lateral motion fixed too), springs (tied to moving "
+                       "smooth planes by axial springs of --platen-stiffness x Kn), traction "
+                       "(every end particle pulled by the same force, ramped at a constant "
+                       "rate) or wide (the two outermost rows or layers held)")
     if not test:
         return
     add(p, "n", TEST_DEFAULTS["n"], help="particles across (2D) or elements along y (3D); "

@@ -7,7 +7,8 @@ and loads the block along its loading axis (y in 2D, z in 3D):
   planes (free to slide sideways) that move apart at ``speed`` — the papers'
   "bonded smooth planes"; ``grips`` (:data:`GRIPS`) can clamp them sideways too, or tie
   them to the moving planes by axial springs of ``wall_kn`` instead of prescribing their
-  motion;
+  motion, pull them by a uniform traction ramped at ``traction_rate``, or hold the two
+  outermost rows or layers (:mod:`bonded_lattice.deck.grips`);
 - ``compression``: two smooth platens (``fix lattice/wall``, ``mu 0``) move
   toward each other at ``speed``; with ``ends="layers"`` (stepped ends, e.g. a
   rotated 2D lattice, where platens would touch a few particles only) the end
@@ -61,7 +62,7 @@ from typing import TextIO
 from .conversion import BondParameters
 from .deck import (ATOM_DUMP_COLUMNS, BOND_COUNTS, PairStyle, atom_bond_counts, bond_counts,
                    energy_budget, integrator, opening, smooth_wall, thermo)
-from .deck.grips import grip_title, spring_grips
+from .deck.grips import GRIPS, end_layers, grip_title
 from .deck.pair import SHEAR_FRAMES
 from .grains import GrainPairOptions
 from .lattice import check_atom_style
@@ -72,12 +73,8 @@ TESTS = ("tension", "compression", "elastic", "confined", "periodic")
 ENDS = ("platens", "layers")
 # how the elastic test loads: platens (compression) or end layers pulled apart (tension)
 ELASTIC_LOADS = ("compression", "tension")
-# how the end layers are gripped when a deck loads through them (DeckSpec.grips): "held" (their
-# axial motion prescribed, free sideways: smooth planes holding them), "clamped" (their lateral
-# motion fixed too) or "springs" (each end particle tied to a moving smooth plane by an axial
-# spring of stiffness wall_kn, free sideways: the 2013 paper's "lattice bonded by two smooth
-# planes", para. 42, with a compliance like that of its platens)
-GRIPS = ("held", "clamped", "springs")
+# how the end layers are gripped when a deck loads through them (DeckSpec.grips): GRIPS of
+# bonded_lattice.deck.grips
 # the per-step log of a deck with the energy budget (read by io.read_ave_time): every term
 # the 2017 paper's Fig. 6c/d heat curves and insets need, at every time step of a window
 # around the failure -- the breaking heat of the normal and of the shear springs (compute
@@ -142,8 +139,10 @@ class DeckSpec:
     elastic_load: str = "compression"  # elastic test: one of ELASTIC_LOADS
     # how the end layers are gripped when the deck loads through them (tension, an elastic
     # test in tension, ends = "layers"): one of GRIPS; "springs" ties them to the moving planes
-    # by springs of wall_kn (default 2 Kn, the platens' default)
+    # by springs of wall_kn (default 2 Kn, the platens' default); "traction" ramps the end
+    # layers' traction at traction_rate (Pa/s)
     grips: str = "held"
+    traction_rate: float = 0.0
 
     def __post_init__(self) -> None:
         if self.test not in TESTS:
@@ -173,10 +172,17 @@ class DeckSpec:
             raise ValueError(f"grips = {self.grips!r} is for decks that load through the end "
                              f"layers (tension, elastic_load 'tension', ends 'layers'); test = "
                              f"{self.test!r}, ends = {self.ends!r} uses platens")
-        if self.grips == "springs" and self.energy:
-            raise ValueError("grips = 'springs': the grip springs' work and energy are not in "
-                             "compute lattice/energy's budget; use grips 'held' or 'clamped' "
-                             "with energy")
+        if self.grips in ("springs", "traction") and self.energy:
+            raise ValueError(f"grips = {self.grips!r}: the grips' work (fix addforce) is not in "
+                             "compute lattice/energy's budget; use grips 'held', 'clamped' or "
+                             "'wide' with energy")
+        if self.grips == "traction" and not (self.traction_rate > 0
+                                             and math.isfinite(self.traction_rate)):
+            raise ValueError(f"traction_rate = {self.traction_rate} is out of range: grips "
+                             "'traction' need 0 < traction_rate < inf (Pa/s)")
+        if self.grips == "traction" and self.schedule != "constant":
+            raise ValueError("grips = 'traction' ramp the force at a constant rate: schedule "
+                             f"must be 'constant' (not {self.schedule!r})")
         if self.schedule not in SCHEDULES:
             raise ValueError(f"schedule = {self.schedule!r} is not known: use one of "
                              f"{', '.join(SCHEDULES)}")
@@ -366,74 +372,6 @@ def _block(bounds: dict[str, tuple[str, str]]) -> str:
     return " ".join(" ".join(bounds.get(a, ("INF", "INF"))) for a in "xyz")
 
 
-def _slab(axis: str, lo: str, hi: str) -> str:
-    """Region bounds of a slab across the loading axis."""
-    return _block({axis: (lo, hi)})
-
-
-def _vector(axis: str, value: str, other: str = "0") -> str:
-    """'other value other' with value in the loading axis' slot."""
-    return " ".join(value if a == axis else other for a in "xyz")
-
-
-def _end_layers(spec: DeckSpec) -> str:
-    """Loading through the end layers: the particles whose centres lie within 0.6 d of either
-    end (the outermost row or layer, or the staggered particles of a rotated lattice's
-    stepped end), gripped as ``spec.grips`` says (:data:`GRIPS`), moved apart in tension and
-    together otherwise."""
-    ax, d = spec.axis, spec.d
-    sign = 1.0 if spec.pulls else -1.0
-    way = "apart" if sign > 0 else "together"
-    if spec.schedule == "constant":
-        motion = f"moving {way} at {spec.speed:g} m/s"
-    else:
-        motion = f"jumping {way} by {spec.step_size:g} m every {spec.relax_steps} steps"
-    text = f"""
-# ---- loading: {grip_title(spec.grips, spec.grip_kn)}, {motion} ----
-region          toplayer block {_slab(ax, f"$(v_hi0-{0.6 * d!r})", "INF")} units box
-region          botlayer block {_slab(ax, "INF", f"$(v_lo0+{0.6 * d!r})")} units box
-group           top region toplayer
-group           bottom region botlayer
-group           inner subtract all top bottom
-velocity        all set 0 0 0 units box
-variable        s0 equal $(step)
-"""
-    if spec.grips == "springs":
-        plane = (f"{sign * spec.speed * spec.dt:.8g}*(step-v_s0)" if spec.schedule == "constant"
-                 else f"{sign * spec.step_size:.6g}*ceil((step-v_s0)/{spec.relax_steps})")
-        speed = sign * spec.speed if spec.schedule == "constant" else 0.0
-        return text + spring_grips(ax, plane, spec.grip_kn, spec.eta, spec.area, speed)
-    # held or clamped: the end layers' motion prescribed (fix move); sideways free (NULL,
-    # integrated with the forces on them) or fixed (0)
-    lateral = "0" if spec.grips == "clamped" else "NULL"
-    if spec.schedule == "constant":
-        move_top = f"linear {_vector(ax, f'{sign * spec.speed:.6g}', lateral)}"
-        move_bot = f"linear {_vector(ax, f'{-sign * spec.speed:.6g}', lateral)}"
-        variables = ""
-    else:
-        # clamped: zero displacement across the load (z stays NULL in 2D, as fix move needs)
-        fixed = "v_zero" if spec.grips == "clamped" else "NULL"
-        variables = (f"variable        dtop equal {sign * spec.step_size:.6g}*ceil((step-v_s0)/{spec.relax_steps})\n"
-                     f"variable        dbot equal -v_dtop\n"
-                     + ("variable        zero equal 0\n" if spec.grips == "clamped" else ""))
-        slots = {a: fixed for a in spec.lateral_axes}
-        move_top, move_bot = (
-            "variable " + " ".join(slots.get(a, var if a == ax else "NULL") for a in "xyz")
-            + " NULL NULL NULL" for var in ("v_dtop", "v_dbot"))
-    how = ("sideways they stay where they are (clamped)" if spec.grips == "clamped"
-           else "sideways they move freely with the block")
-    return text + f"""# the end layers (centres within 0.6 d of the ends: the outermost row, or both
-# staggered rows of a rotated lattice): their axial motion is prescribed (fix move);
-# {how}
-{variables}fix             ptop top move {move_top}
-fix             pbot bottom move {move_bot}
-{integrator("inner", spec.eta)}# stress (tension positive) from the force the block exerts on the end layers
-compute         ftop top reduce sum f{ax}
-compute         fbot bottom reduce sum f{ax}
-variable        stress equal 0.5*(c_fbot-c_ftop)/{spec.area:.8g}
-"""
-
-
 def _loading(spec: DeckSpec) -> str:
     ax, d = spec.axis, spec.d
     k = "xyz".index(ax) + 1  # index of the axis in fix outputs
@@ -453,7 +391,7 @@ compute         pvir all pressure NULL virial
 variable        stress equal -c_pvir[{k}]
 """
     if spec.pulls:
-        return _end_layers(spec)
+        return end_layers(spec)
     wall_kn = spec.wall_kn if spec.wall_kn is not None else 2.0 * spec.bond.Kn
     r = 0.5 * d
     sides = ""
@@ -473,7 +411,7 @@ variable        stress equal -c_pvir[{k}]
                       + smooth_wall(f"side{a}hi", f"{a}hi", f"$(bound(all,{a}max)+{r!r})",
                                     wall_kn, servo))
     if spec.ends == "layers":
-        return sides + _end_layers(spec)
+        return sides + end_layers(spec)
     if spec.schedule == "constant":
         title = f"moving in at {spec.speed:g} m/s"
         variables = ""

@@ -24,8 +24,8 @@ from .conversion import (
     paper_damping_3d,
     rock_to_bond,
 )
-from .decks import (BREAKING_COLUMNS, BREAKING_LOG, ELASTIC_LOADS, ENDS, GRIPS, DeckSpec,
-                    write_deck)
+from .deck.grips import check_grips
+from .decks import BREAKING_COLUMNS, BREAKING_LOG, ELASTIC_LOADS, ENDS, DeckSpec, write_deck
 from .grains import GrainPairOptions
 from .io.ave_time import read_ave_time
 from .lattice import (Lattice, close_packed_block_3d, hex_block_2d, turned_block_3d,
@@ -316,11 +316,14 @@ def check_platen_stiffness(value: float) -> float:
     return value
 
 
-def check_grips(grips: str) -> str:
-    """``grips`` if one of :data:`bonded_lattice.decks.GRIPS`; else a ValueError naming it."""
-    if grips not in GRIPS:
-        raise ValueError(f"grips = {grips!r} is not known: use one of {', '.join(GRIPS)}")
-    return grips
+def traction_rate(rock: Rock, lattice: Lattice, speed: float) -> float:
+    """The traction grips' rate (Pa/s) that loads the block as fast as end layers moving apart
+    at ``speed`` (m/s each) would: the rock's modulus times their strain rate 2 speed over the
+    centres' span, so that the traction reaches Tu after as many wave crossings as the
+    displacement loading reaches Tu / E."""
+    if not (speed > 0 and math.isfinite(speed)):
+        raise ValueError(f"speed = {speed} is out of range: need 0 < speed < inf (m/s)")
+    return rock.E * 2.0 * speed / lattice.height
 
 
 def has_mid_height(lattice: Lattice) -> bool:
@@ -336,7 +339,7 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
               grains: GrainPairOptions | None = None,
               atom_style: str = "atomic", ends: str = "platens",
               wall_kn: float | None = None, halt_fraction: float | None = None,
-              grips: str = "held") -> DeckSpec:
+              grips: str = "held", traction_rate: float = 0.0) -> DeckSpec:
     """The deck of a planned run (reads ``data.lattice`` beside it).
 
     grains: the pair style's grain keywords of a heterogeneous block, whose
@@ -345,7 +348,8 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
     ends: ``platens`` or ``layers`` (:func:`choose_ends`).
     wall_kn: the platens' spring stiffness, or the grip springs' (N/m; default 2 Kn).
     grips: how the end layers are gripped when the test loads through them
-    (:data:`bonded_lattice.decks.GRIPS`).
+    (:data:`bonded_lattice.decks.GRIPS`); traction_rate: the traction grips' rate (Pa/s,
+    :func:`traction_rate`).
     halt_fraction: a strength test stops once |stress| falls below this fraction of its
     peak (0: never; None: DeckSpec's default).
     """
@@ -353,6 +357,7 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
     return DeckSpec(gauges=gauges, energy=energy, shear_frame=shear_frame, grains=grains,
                     halt_delay=int(math.ceil(ENERGY_AFTERMATH / plan.dt)) if energy else 0,
                     atom_style=atom_style, ends=ends, wall_kn=wall_kn, grips=grips,
+                    traction_rate=traction_rate,
                     test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
                     area=plan.area, eta=plan.eta, speed=plan.speed, steps=plan.steps,
                     dt=plan.dt, thermo_every=plan.thermo_every, confining=confining,
@@ -438,7 +443,9 @@ class RockTest(Study):
                               self.dump_every, has_mid_height(self.lattice), self.energy,
                               self.shear_frame, atom_style=self.atom_style, ends=self.ends,
                               wall_kn=self.platen_stiffness * self.bond.Kn,
-                              halt_fraction=self.halt_fraction, grips=self.grips)
+                              halt_fraction=self.halt_fraction, grips=self.grips,
+                              traction_rate=(traction_rate(self.rock, self.lattice, plan.speed)
+                                             if self.grips == "traction" else 0.0))
         write_deck(self.spec, deck)
         return deck
 

@@ -8,7 +8,9 @@ The papers do not say how they pulled their blocks; the 2013 paper's lattice is 
 smooth planes" (para. 42).  The periodic cell is the limit of grips that do not concentrate
 stress, the held end layers that of infinitely stiff smooth grips; the spring grips are the
 compliant planes the platens' analogue in compression would be (section 'The platens decide
-the compressive deficit': platens of Kn give the paper's Cu deficit).
+the compressive deficit': platens of Kn give the paper's Cu deficit).  In 2D also a uniform
+traction on the end layers and the two outermost rows held (:mod:`.grip_ends`, data key
+``ends``).
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ import numpy as np
 
 from ..plotting import pyplot, save_png
 from .doc import DocContext, paper_pct, pct
+from .grip_ends import end_grip_lines, run_end_grips
 from .papers import paper_value
 from .runner import Validation, rock_for
 from .section import Section
@@ -55,6 +58,7 @@ def run_grips(v: Validation) -> dict:
                                                  "tension", n, **options)
                                       for key, options in GRIP_VARIANTS.items()}})
         data[str(dim)] = rows
+    data["ends"] = run_end_grips(v)
     return data
 
 
@@ -103,6 +107,8 @@ def doc_grips(data: dict, ctx: DocContext) -> list[str]:
               f"{pct(cell)}; the paper's multi-unit mean {paper_pct(f'{dim}d.multi.Tu')}."]
     if all("variants" in r for dim in ("2", "3") for r in data[dim]):
         L += _variant_lines(data, ctx)
+    if "ends" in data:
+        L += end_grip_lines(data["ends"])
     return L
 
 
