@@ -22,10 +22,13 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 from bonded_lattice.analysis import ELASTIC_WINDOW, youngs_modulus
+from bonded_lattice.deck.grips import RUNAWAY, TRACTION_LOG
 from bonded_lattice.experiment import RockTest
 from bonded_lattice.io import read_thermo
+from bonded_lattice.io.ave_time import read_ave_time
 from bonded_lattice.rocks import get_rock
 
 TOLERANCE = 1e-3
@@ -61,3 +64,35 @@ def test_spring_grips_are_in_series_with_the_unit(tmp_path, k):
     assert grips_modulus == pytest.approx(series, rel=TOLERANCE)
     # the block itself (all-particle fit) keeps the formulas' E: the springs are outside it
     assert s["measured"]["E"] == pytest.approx(rock.E, rel=TOLERANCE)
+
+
+def test_traction_unit_has_the_formulas_modulus(tmp_path):
+    # every end particle pulled by the same force: on the unit the apex and the two base
+    # particles carry what the held grips (free sideways) would make them carry, so E and nu
+    # are the formulas'
+    s = unit(tmp_path, "traction")
+    rock = get_rock("quartz")
+    assert s["measured"]["E"] == pytest.approx(rock.E, rel=TOLERANCE)
+    assert s["measured"]["nu"] == pytest.approx(rock.nu, rel=TOLERANCE)
+
+
+def test_traction_unit_fails_at_the_closed_form_strength(tmp_path):
+    # the unit's closed-form Tu is the rock's Tu (the conversion formulas are its strength,
+    # test_single_unit); under the traction ramp the deck reads Tu as the traction of the
+    # last thermo row before the end layers run away, so the closed form lies between that
+    # row's traction, less the damping the traction also overcomes (eta x speed on each of at
+    # most two particles per end layer: 2% of Tu at the papers' damping, which is heavy on a
+    # unit; the apex alone takes 1%), and the runaway row's traction (a row is one step here,
+    # 0.2% of Tu)
+    rock = get_rock("quartz")
+    s = RockTest(rock, 2, "tension", 2, tmp_path / "t", np_=1, progress=False, pictures=False,
+                 grips="traction", crossings=100.0, damping=1.0).run()
+    log = read_ave_time(tmp_path / "t" / TRACTION_LOG)
+    k = int(np.argmax(log["v_runaway"] > RUNAWAY))
+    assert k > 0 and log["v_runaway"][k - 1] <= RUNAWAY
+    before, after = log["v_applied"][k - 1], log["v_applied"][k]
+    assert s["measured"]["Tu"] == pytest.approx(before, rel=1e-5)   # log's 6 digits
+    plan = s["plan"]
+    damping = 2 * plan["eta"] * plan["speed"] / plan["area"]
+    assert before - damping <= rock.Tu <= after
+    assert after - before < 0.005 * rock.Tu

@@ -132,7 +132,8 @@ def _start(axis: str, speed: float) -> str:
 def traction_grips(axis: str, rate: float, dt: float, speed: float, eta: float,
                    area: float, every: int) -> str:
     """Traction grips along ``axis`` (``y`` or ``z``): every particle of the top layer pulled
-    by the same axial force, every one of the bottom layer by its opposite, their sum
+    by the same axial force, every one of the bottom layer by the same opposite force, each
+    layer's sum
     ``rate`` (Pa/s, negative: pushed together) times the time since the loading started times
     ``area`` (m^2); sideways free; every particle integrated and damped (eta, N s/m).
 
@@ -162,7 +163,7 @@ def traction_grips(axis: str, rate: float, dt: float, speed: float, eta: float,
 # is integrated and damped
 variable        applied equal {rate * dt:.8g}*(step-v_s0)
 variable        ftop equal v_applied*{area:.8g}/count(top)
-variable        fbot equal -v_ftop
+variable        fbot equal -v_applied*{area:.8g}/count(bottom)
 fix             gtop top addforce {vector.format(side="top")}
 fix             gbot bottom addforce {vector.format(side="bot")}
 {integrator("all", eta)}# the end layers' separation rate against the quasi-static one (2 x {abs(speed):.6g} m/s)
