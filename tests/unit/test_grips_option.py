@@ -103,19 +103,22 @@ def test_the_deck_writes_the_traction_grips():
     # 1e11 Pa/s x 2e-8 s per step; 7e-3 m^2 shared by each end layer's particles
     text = deck_text(spec(grips="traction", traction_rate=1e11))
     assert "fix             ptop" not in text
-    assert "variable        applied equal 2000*(step-v_s0)\n" in text
-    assert "variable        ftop equal v_applied*0.007/count(top)\n" in text
-    assert "variable        fbot equal -v_applied*0.007/count(bottom)\n" in text
-    assert "fix             gtop top addforce 0.0 v_ftop 0.0\n" in text
-    assert "fix             gbot bottom addforce 0.0 v_fbot 0.0\n" in text
+    # the block starts at the quasi-static rate of end layers moving at 0.01 m/s each; runaway:
+    # the end layers' separation rate over 2 x 0.01 m/s; the stress is the traction until it
+    # exceeds 1.5
+    lines = ["variable        applied equal 2000*(step-v_s0)",
+             "variable        ftop equal v_applied*0.007/count(top)",
+             "variable        fbot equal -v_applied*0.007/count(bottom)",
+             "fix             gtop top addforce 0.0 v_ftop 0.0",
+             "fix             gbot bottom addforce 0.0 v_fbot 0.0",
+             "variable        vstart atom 0.01*(y-0.5*(v_lo0+v_hi0))/(0.5*v_H0)",
+             "variable        runaway equal (c_vtop-c_vbot)/0.02",
+             "variable        stress equal v_applied*(v_runaway<=1.5)",
+             "fix             tractionlog all ave/time 500 1 500 v_applied v_separation "
+             "v_runaway file traction.dat"]
+    missing = [line for line in lines if line + "\n" not in text]
+    assert missing == []
     assert "fix             integrate all lattice/nve" in text
-    # the block starts at the quasi-static rate of end layers moving at 0.01 m/s each
-    assert "variable        vstart atom 0.01*(y-0.5*(v_lo0+v_hi0))/(0.5*v_H0)\n" in text
-    # runaway: the end layers' separation rate over 2 x 0.01 m/s; the stress is the traction
-    # until it exceeds 1.5
-    assert "variable        runaway equal (c_vtop-c_vbot)/0.02\n" in text
-    assert "variable        stress equal v_applied*(v_runaway<=1.5)\n" in text
-    assert "fix             tractionlog all ave/time 500 1 500 v_applied v_separation v_runaway file traction.dat\n" in text
     # 3D: along z; pushed together with ends = "layers" (negative rate and speed)
     pushed = deck_text(spec(test="compression", ends="layers", dim=3, grips="traction",
                             traction_rate=1e11))

@@ -233,7 +233,7 @@ variable        s0 equal $(step)
             + " NULL NULL NULL" for var in ("v_dtop", "v_dbot"))
     how = ("sideways they stay where they are (clamped)" if spec.grips == "clamped"
            else "sideways they move freely with the block")
-    which = ("the two outermost rows or layers" if spec.grips == "wide" else
+    which = ("the two outermost\n# rows or layers" if spec.grips == "wide" else
              "the outermost row, or both\n# staggered rows of a rotated lattice")
     return text + f"""# the end layers (centres within {depth / d:.4g} d of the ends: {which}): their axial motion is prescribed (fix move);
 # {how}
