@@ -182,8 +182,9 @@ CHECKS: list[Check] = [
     Check("2D multi-unit mean, Tu", "2d.multi.Tu", _setup_mean("2", "Tu"),
           "the papers' set-up", PAPER_SCATTER, SCATTER_REASON,
           open="bracketed, not explained: held end layers (ours) give less, a periodic cell "
-               "with no grips more (section 'grips'); the paper does not say how it pulled "
-               "its blocks"),
+               "with no grips more; every other grip tried (clamped, springs, a uniform "
+               "traction, two rows held) gives less still (section 'grips'); the paper does "
+               "not say how it pulled its blocks"),
     Check("2D Tu, 1033 particles (N = 30)", "2d.n30.Tu", _n30_tu, "the papers' set-up",
           PAPER_SCATTER, SCATTER_REASON,
           open="bracketed as the mean, not explained (section 'grips')"),
