@@ -256,6 +256,17 @@ def plan_test(rock: Rock, bond: BondParameters, lattice: Lattice, test: str,
 # dropped below 30% of the peak, and the papers' damping takes 2 m/eta (about 1.6 us) to
 # halve it; 20 us shows the peak and its decay into viscous heat (Liu 2017 Fig. 6b, B1 to B2)
 ENERGY_AFTERMATH = 2.0e-5
+# the longest aftermath: a tenth of a second is 1e6 steps of the papers' 3D time step
+AFTERMATH_MAX = 0.1
+
+
+def check_aftermath(aftermath: float) -> float:
+    """``aftermath`` (s) if 0 < aftermath <= :data:`AFTERMATH_MAX`; a ValueError naming the
+    value and the range otherwise."""
+    if not 0.0 < aftermath <= AFTERMATH_MAX:
+        raise ValueError(f"aftermath = {aftermath!r} s is out of range: need 0 < aftermath <= "
+                         f"{AFTERMATH_MAX:g} s (the energy decks' run after the failure)")
+    return float(aftermath)
 
 
 def end_particles(lattice: Lattice) -> int:
@@ -339,7 +350,8 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
               grains: GrainPairOptions | None = None,
               atom_style: str = "atomic", ends: str = "platens",
               wall_kn: float | None = None, halt_fraction: float | None = None,
-              grips: str = "held", traction_rate: float = 0.0) -> DeckSpec:
+              grips: str = "held", traction_rate: float = 0.0,
+              aftermath: float = ENERGY_AFTERMATH) -> DeckSpec:
     """The deck of a planned run (reads ``data.lattice`` beside it).
 
     grains: the pair style's grain keywords of a heterogeneous block, whose
@@ -352,10 +364,13 @@ def deck_spec(plan: RunPlan, test: str, dim: int, bond: BondParameters,
     :func:`traction_rate`).
     halt_fraction: a strength test stops once |stress| falls below this fraction of its
     peak (0: never; None: DeckSpec's default).
+    aftermath: energy decks run on this long (s) after the failure halt's condition is
+    first met (:data:`ENERGY_AFTERMATH`; :func:`check_aftermath`).
     """
     halt = {} if halt_fraction is None else {"halt_fraction": halt_fraction}
     return DeckSpec(gauges=gauges, energy=energy, shear_frame=shear_frame, grains=grains,
-                    halt_delay=int(math.ceil(ENERGY_AFTERMATH / plan.dt)) if energy else 0,
+                    halt_delay=int(math.ceil(check_aftermath(aftermath) / plan.dt))
+                    if energy else 0,
                     atom_style=atom_style, ends=ends, wall_kn=wall_kn, grips=grips,
                     traction_rate=traction_rate,
                     test=test, dim=dim, d=plan.d, bond=bond, data_file="data.lattice",
@@ -390,8 +405,9 @@ class RockTest(Study):
                  shear_frame: str = "fixed", atom_style: str = "atomic",
                  pictures: bool = True, ends: str = "auto", platen_stiffness: float = 2.0,
                  halt_fraction: float | None = None, grips: str = "held",
-                 **plan_options) -> None:
+                 aftermath: float = ENERGY_AFTERMATH, **plan_options) -> None:
         super().__init__(out, np_=np_, progress=progress, pictures=pictures)
+        self.aftermath = check_aftermath(aftermath)
         self.platen_stiffness = check_platen_stiffness(platen_stiffness)
         self.grips = check_grips(grips)
         self.rock, self.dim, self.test, self.n, self.d = rock, dim, test, n, d
@@ -445,7 +461,8 @@ class RockTest(Study):
                               wall_kn=self.platen_stiffness * self.bond.Kn,
                               halt_fraction=self.halt_fraction, grips=self.grips,
                               traction_rate=(traction_rate(self.rock, self.lattice, plan.speed)
-                                             if self.grips == "traction" else 0.0))
+                                             if self.grips == "traction" else 0.0),
+                              aftermath=self.aftermath)
         write_deck(self.spec, deck)
         return deck
 
@@ -529,7 +546,8 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
              dump_every: int = 0, orientation: float = 0.0, energy: bool = False,
              shear_frame: str = "fixed", atom_style: str = "atomic", ends: str = "auto",
              platen_stiffness: float = 2.0, halt_fraction: float | None = None,
-             grips: str = "held", **plan_options) -> dict:
+             grips: str = "held", aftermath: float = ENERGY_AFTERMATH,
+             **plan_options) -> dict:
     """Run one test end to end (:class:`RockTest`) and return the summary (also written to
     summary.json).
 
@@ -551,6 +569,8 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
     halt_fraction: a strength test stops once |stress| falls below this fraction of its
         peak (0: runs its planned steps; None: the decks' default,
         :class:`bonded_lattice.decks.DeckSpec`).
+    aftermath: with ``energy``, how long (s) the run goes on after that (default
+        :data:`ENERGY_AFTERMATH`; :func:`check_aftermath`).
     plan_options: passed to :func:`plan_test` (crossings, speed, confining,
         schedule, damping, elastic_strain, elastic_load, step_size, relax_steps,
         thermo_every).
@@ -559,7 +579,7 @@ def run_test(rock: Rock, dim: int, test: str, n: int, out: str | Path, np_: int 
                     dump_every=dump_every, orientation=orientation, energy=energy,
                     shear_frame=shear_frame, atom_style=atom_style, ends=ends,
                     platen_stiffness=platen_stiffness, halt_fraction=halt_fraction,
-                    grips=grips, **plan_options).run()
+                    grips=grips, aftermath=aftermath, **plan_options).run()
 
 
 ENERGY_NAMES = ("elastic", "kinetic", "gravitational", "viscous_heat", "breaking_heat_normal",

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from ..decks import BREAKING_WINDOW, DeckSpec
 from ..experiment import ENERGY_AFTERMATH, build_lattice
-from ..io import read_ave_time
+from ..io import read_ave_time, read_thermo
 from ..schedules import DEFAULT_DT_FRACTION, PAPER_SCHEDULES
 from .doc import DocContext
 from .energy_plots import energy_curves_png, heat_window_png
@@ -106,6 +106,7 @@ def measure_run(folder: Path, test: str, summary: dict) -> dict:
         out["old_halt_step"] = halt
         # what the run that stopped there measured: its heat had not reached the final value
         out["event_to_old_halt"] = failure_event(before, dt)
+    out["elastic_decline_s"] = elastic_decline(folder)
     elastic = log["c_energy[1]"]
     out["ke_over_peak_elastic"] = out["ke"]["every step"]["kinetic_J"] / float(elastic.max())
     out["ke_width_s"] = peak_width(log, "c_energy[2]", dt)
@@ -117,6 +118,30 @@ def measure_run(folder: Path, test: str, summary: dict) -> dict:
         loading_steps = math.ceil(event["start_step"] / plan["relax_steps"])
         out["elongation_m"] = 2 * plan["step_size"] * loading_steps
     return out
+
+
+# fractions of the elastic energy's peak its decline after the failure is timed to
+ELASTIC_LEVELS = (0.5, 0.1, 0.05)
+
+
+def _fall(time, values, levels) -> dict[str, float | None]:
+    """Time from the largest of ``values`` to its first row below each fraction of
+    ``levels`` of it; None where the rows end first."""
+    top = int(values.argmax())
+    out: dict[str, float | None] = {}
+    for f in levels:
+        below = (values[top:] < f * values[top]).nonzero()[0]
+        out[f"{f:g}"] = float(time[top + below[0]] - time[top]) if below.size else None
+    return out
+
+
+def elastic_decline(folder: Path) -> dict[str, dict[str, float | None]]:
+    """From the thermo rows of ``folder/log.lammps``: the time from the elastic energy's peak
+    (the paper's A2) to its first row below each fraction of :data:`ELASTIC_LEVELS` of that
+    peak (A3: 'declines to almost zero'), and the same for |stress|."""
+    table = read_thermo(folder / "log.lammps")[-1]
+    return {"elastic": _fall(table["Time"], table["c_energy[1]"], ELASTIC_LEVELS),
+            "stress": _fall(table["Time"], abs(table["v_stress"]), ELASTIC_LEVELS)}
 
 
 def run_energy(v: Validation) -> dict:
@@ -143,6 +168,15 @@ def run_energy(v: Validation) -> dict:
         data["curves"][test] = {"key": key, "whole": curve(folder, CURVE_COLUMNS, points=200),
                                 "window": window_rows(log, run["event"], run["dt"], AFTER_S)}
     return data
+
+
+def _decline_text(run: dict) -> str:
+    """The elastic energy's and the stress's fall after their peaks, in words."""
+    def fall(name: str) -> str:
+        return ", ".join(f"to {float(f):g} of its peak in " + ("(not within the run)" if t is None
+                                                              else f"{t:.2g} s")
+                         for f, t in run["elastic_decline_s"][name].items())
+    return f"the elastic energy falls {fall('elastic')}; the stress {fall('stress')}"
 
 
 def _us(x: float | None, digits: int = 2) -> str:
@@ -221,6 +255,17 @@ def doc_energy(data: dict, ctx: DocContext) -> list[str]:
                  "duration off the kinetic energy of the Fig. 6a inset without a definition); "
                  f"{100 * cev['precursor_fraction']:.0f}% of the breaking heat came before it "
                  "(the opening cracks of the paper's A1) |")
+    for key in ("compression_stepwise", "compression_constant"):
+        comp = runs.get(key)
+        if comp is None or "elastic_decline_s" not in comp:
+            continue
+        L.append(f"| the compression failure, A2 to A3 ({_setup(comp)}) | about "
+                 f"{p['3d.energy.compression.failure_duration_s'].value:.0e} s | "
+                 f"{_decline_text(comp)} | the paper: the model fails at A2 and its elastic "
+                 "energy 'declines to almost zero at A3'; the times from the elastic energy's "
+                 "(the stress's) peak to its first thermo row below a fraction of it, while the "
+                 f"run lasts ({_us(data['aftermath_s'], 0)} us past the failure halt's "
+                 "condition) |")
     L += ["", "### Like for like: from the paper's set-up to ours, one change at a time", "",
           "| run | change from the row above | set-up | KE peak / work, every step | every 1 "
           "us | thermo rows | thermo rows to the old halt | start to end (us) | 2-98% (us) | "
