@@ -117,12 +117,13 @@ def test_the_deck_writes_its_ring_buffer_to_the_log():
 
 def test_peak_width_at_a_fraction_of_the_peak():
     # a triangle of height 1 over steps 0..200, peak at 100: above a fraction f of the peak
-    # from step 100 f to 200 - 100 f, i.e. 200 (1 - f) steps
+    # from step 100 f to 200 - 100 f, i.e. 200 (1 - f) steps; each edge step sits exactly on
+    # the level, so round-off may drop it: a step at each end
     steps = np.arange(201)
     log = {"TimeStep": steps, "c_energy[2]": 1.0 - np.abs(steps - 100) / 100.0}
     dt = 1e-8
     for f in (0.5, 0.1, 0.01):
         assert peak_width(log, "c_energy[2]", dt, f) == pytest.approx(200 * (1 - f) * dt,
-                                                                       abs=dt)
+                                                                       abs=2.01 * dt)
     with pytest.raises(ValueError, match="fraction = 1.0"):
         peak_width(log, "c_energy[2]", dt, 1.0)
