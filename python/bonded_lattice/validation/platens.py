@@ -38,8 +38,20 @@ def run_platens(v: Validation) -> dict:
             runs["layers"] = v.run(f"{dim}d/platens_n{n}_layers_c{CROSSINGS[dim]:g}", rock, dim,
                                    "compression", n, crossings=CROSSINGS[dim], ends="layers")
             rows.append({"n": n, "runs": runs})
-        data[str(dim)] = {"crossings": CROSSINGS[dim], "rows": rows}
+        data[str(dim)] = {"crossings": CROSSINGS[dim], "rows": rows,
+                          "elastic": [{"n": n,
+                                       "1": v.run(f"{dim}d/platens_n{n}_k1_elastic", rock, dim,
+                                                  "elastic", n, platen_stiffness=1.0),
+                                       "2": v.run(f"{dim}d/n{n}_elastic", rock, dim, "elastic",
+                                                  n)}
+                                      for n in v.sizes(dim)]}
     return data
+
+
+def elastic_mean(rows: list[dict], key: str, quantity: str = "E") -> float:
+    """Mean magnitude of the elastic error of ``quantity`` over the multi-unit sizes of the
+    platens section's elastic rows, with platens of ``key`` (``"1"`` or ``"2"``) Kn."""
+    return float(np.mean([abs(r[key]["relative_error"][quantity]) for r in rows if r["n"] > 2]))
 
 
 def doc_platens(data: dict, ctx: DocContext) -> list[str]:
@@ -67,6 +79,30 @@ def doc_platens(data: dict, ctx: DocContext) -> list[str]:
               f"mean {paper_pct(f'{dim}d.multi.Cu')}."]
     _png(ctx, data, keys)
     L += ["", "![Cu against the platens' stiffness](img/platens.png)"]
+    if all("elastic" in data[dim] for dim in ("2", "3")):
+        L += _elastic_lines(data)
+    return L
+
+
+def _elastic_lines(data: dict) -> list[str]:
+    """E and nu of the elastic test (strain -1e-4, constant loading at the papers' damping)
+    with platens of Kn and of 2 Kn."""
+    L = ["", "### The elastic test with platens of Kn", "",
+         "E and nu (mid-height gauges) of the elastic test with platen springs of Kn and of "
+         "2 Kn (ours; the series' runs).", "",
+         "| dim | size | particles | E, Kn | E, 2 Kn | nu, Kn | nu, 2 Kn |",
+         "|---|---|---|---|---|---|---|"]
+    for dim in ("2", "3"):
+        for r in data[dim]["elastic"]:
+            L.append(f"| {dim}D | {'N' if dim == '2' else 'n_y'} = {r['n']} | "
+                     f"{r['1']['particles']} | " + " | ".join(
+                         pct(r[k]["relative_error"][q]) for q in ("E", "nu") for k in ("1", "2"))
+                     + " |")
+    for dim in ("2", "3"):
+        rows = data[dim]["elastic"]
+        L += ["", f"{dim}D, mean magnitude over the multi-unit sizes: E {100 * elastic_mean(rows, '1'):.2f}% "
+              f"with platens of Kn, {100 * elastic_mean(rows, '2'):.2f}% with 2 Kn; nu "
+              f"{100 * elastic_mean(rows, '1', 'nu'):.2f}% and {100 * elastic_mean(rows, '2', 'nu'):.2f}%."]
     return L
 
 
