@@ -131,6 +131,11 @@ def _elastic_3d(r: dict) -> float:
     return float(np.mean([abs(x["relative_error"]["E"]) for x in rows]))
 
 
+def _cu_platens_kn_3d(r: dict) -> float:
+    return float(np.mean([row["run"]["relative_error"]["Cu"]
+                          for row in _data(r, "platens")["3"]["kn_rows"]]))
+
+
 def _elastic_platens_kn(r: dict) -> float:
     return elastic_mean(_data(r, "platens")["3"]["elastic"], "1")
 
@@ -199,6 +204,8 @@ CHECKS: list[Check] = [
           PAPER_SCATTER, SCATTER_REASON),
     Check("3D multi-unit mean, Cu", "3d.multi.Cu", _setup_mean("3", "Cu"), "the papers' set-up",
           PAPER_SCATTER, SCATTER_REASON),
+    Check("3D multi-unit mean, Cu, platens of Kn", "3d.multi.Cu", _cu_platens_kn_3d,
+          "platen springs of Kn, 1000 crossings (n_y = 4-20)", PAPER_SCATTER, SCATTER_REASON),
     Check("3D multi-unit E error, mean magnitude", "3d.multi.elastic", _elastic_3d,
           "elastic test, strain -1e-4", 0.0005, ABOUT,
           open="with our platens of 2 Kn; with platens of Kn, the stiffness whose 2D Cu is "
