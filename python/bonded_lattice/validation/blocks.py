@@ -182,12 +182,10 @@ def _defaults_text() -> str:
     """The strength tests' defaults in words, from
     :func:`~bonded_lattice.schedules.default_loading`."""
     parts = []
-    for dim in DEFAULT_LOADING:
-        per_test = {t: default_loading(dim, t) for t in ("tension", "compression")}
-        dampings = {d["damping"] for d in per_test.values()}
-        crossings = ", ".join(f"{d['crossings']:g} crossings in {t}" for t, d in per_test.items())
-        parts.append(f"{dim}D {crossings}" + (f" at eta x {next(iter(dampings)):g}"
-                                              if len(dampings) == 1 else ""))
+    for dim, values in DEFAULT_LOADING.items():   # the damping is per dimension only
+        crossings = ", ".join(f"{default_loading(dim, t)['crossings']:g} crossings in {t}"
+                              for t in ("tension", "compression"))
+        parts.append(f"{dim}D {crossings} at eta x {values['damping']:g}")
     return "; ".join(parts)
 
 
