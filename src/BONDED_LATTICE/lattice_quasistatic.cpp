@@ -1,8 +1,8 @@
 /* ----------------------------------------------------------------------
    BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
 
-   lattice/quasistatic ftol F [relax minimize|run N] [maxsteps M]
-                              [break one|all] [maxbreak K] [quiet yes|no]
+   lattice/quasistatic ftol F [relax minimize|run N|local] [omega W]
+                              [maxsteps M] [break one|all] [maxbreak K] [quiet yes|no]
 
    Breaking is switched off in pair_style lattice/bond while the command
    runs, so that a relaxation only finds the equilibrium of the network as
@@ -18,7 +18,10 @@
      positions alone, so its minimum is the exact equilibrium; shear springs
      depend on the path and are refused;
    - run N: damped dynamics with the input's integrator and damping fixes, in
-     runs of N steps until the largest force component is below ftol.
+     runs of N steps until the largest force component is below ftol;
+   - local: over-relaxation of the particles whose force exceeds ftol only
+     (LatticeLocalRelax), so that a break costs work where it changes the
+     forces; central springs only, as minimize.
 ------------------------------------------------------------------------- */
 
 #include "lattice_quasistatic.h"
@@ -29,6 +32,7 @@
 #include "exceptions.h"
 #include "fix_lattice_bond_store.h"
 #include "force.h"
+#include "lattice_local_relax.h"
 #include "input.h"
 #include "pair_lattice_bond.h"
 #include "update.h"
@@ -50,8 +54,8 @@ void LatticeQuasistatic::command(int narg, char **arg)
   pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
   if (!pair) error->all(FLERR, "lattice/quasistatic requires pair_style lattice/bond");
   if (narg < 2 || strcmp(arg[0], "ftol") != 0)
-    error->all(FLERR, "lattice/quasistatic needs: ftol F [relax minimize|run N] [maxsteps M] "
-               "[break one|all] [maxbreak K] [quiet yes|no]");
+    error->all(FLERR, "lattice/quasistatic needs: ftol F [relax minimize|run N|local] [omega W] "
+               "[maxsteps M] [break one|all] [maxbreak K] [quiet yes|no]");
   ftol = utils::numeric(FLERR, arg[1], false, lmp);
   if (!(ftol > 0.0))
     error->all(FLERR, "lattice/quasistatic ftol {} is out of range: need > 0 (force units, the "
@@ -64,18 +68,29 @@ void LatticeQuasistatic::command(int narg, char **arg)
     if (key == "relax") {
       if (value == "minimize") {
         minimize = true;
+        local = false;
+      } else if (value == "local") {
+        minimize = false;
+        local = true;
       } else if (value == "run") {
         if (iarg + 2 >= narg)
           error->all(FLERR, "lattice/quasistatic relax run needs the steps between force checks");
         minimize = false;
+        local = false;
         chunk = utils::bnumeric(FLERR, arg[iarg + 2], false, lmp);
         if (chunk < 1)
           error->all(FLERR, "lattice/quasistatic relax run {} is out of range: need >= 1 step",
                      chunk);
         iarg++;
       } else {
-        error->all(FLERR, "lattice/quasistatic relax {} is not valid: use minimize or run N", value);
+        error->all(FLERR, "lattice/quasistatic relax {} is not valid: use minimize, run N or local",
+                   value);
       }
+    } else if (key == "omega") {
+      omega = utils::numeric(FLERR, value, false, lmp);
+      if (!(omega > 0.0 && omega < 2.0))
+        error->all(FLERR, "lattice/quasistatic omega {} is out of range: need 0 < omega < 2 (the "
+                   "over-relaxation factor of relax local; 1 is Gauss-Seidel)", omega);
     } else if (key == "maxsteps") {
       maxsteps = utils::bnumeric(FLERR, value.c_str(), false, lmp);
       if (maxsteps < 1)
@@ -88,39 +103,56 @@ void LatticeQuasistatic::command(int narg, char **arg)
       maxbreak = utils::bnumeric(FLERR, value.c_str(), false, lmp);
       if (maxbreak < 0)
         error->all(FLERR, "lattice/quasistatic maxbreak {} is out of range: need >= 0", maxbreak);
+    } else if (key == "breaks") {
+      breaks_file = value;
     } else if (key == "quiet") {
       quiet = utils::logical(FLERR, value, false, lmp);
     } else {
-      error->all(FLERR, "Unknown lattice/quasistatic keyword {}: valid are relax, maxsteps, break, "
-                 "maxbreak, quiet", key);
+      error->all(FLERR, "Unknown lattice/quasistatic keyword {}: valid are relax, omega, maxsteps, "
+                 "break, maxbreak, breaks, quiet", key);
     }
     iarg += 2;
   }
 
+  if (!breaks_file.empty() && comm->me == 0) {
+    breaks_fp = fopen(breaks_file.c_str(), "a");
+    if (!breaks_fp)
+      error->one(FLERR, "lattice/quasistatic breaks: cannot open {} for appending: {}", breaks_file,
+                 utils::getsyserror());
+  }
   pair->enable_breaking(false);
-  bigint steps = 0, relaxations = 0, broken = 0;
+  bigint steps = 0, relaxations = 0, broken = 0, moves = 0;
   int tension = 0, shear = 0;
   double worst = 0.0;
-  while (true) {
-    steps += relax();
-    relaxations++;
-    if (maxbreak >= 0 && broken >= maxbreak) break;
-    tagint owner = 0, partner = 0;
-    BreakMode mode = BreakMode::None;
-    worst = worst_bond(owner, partner, mode);
-    if (!(worst > 1.0)) break;
-    if (break_all) {
-      broken += break_beyond_threshold(tension, shear);
-    } else {
-      const int i = atom->map(owner);
-      if (i >= 0 && i < atom->nlocal) {
-        const tagint *pt = pair->store()->partners(i);
-        for (int s = 0; s < pair->store()->record_count(i); s++)
-          if (pt[s] == partner) pair->break_record(i, s, mode);
+  if (local) {
+    run_local(broken, tension, shear, relaxations, steps, moves, worst);
+  } else {
+    while (true) {
+      steps += relax();
+      relaxations++;
+      if (maxbreak >= 0 && broken >= maxbreak) break;
+      tagint owner = 0, partner = 0;
+      BreakMode mode = BreakMode::None;
+      worst = worst_bond(owner, partner, mode);
+      if (!(worst > 1.0)) break;
+      if (break_all) {
+        broken += break_beyond_threshold(tension, shear);
+      } else {
+        const int i = atom->map(owner);
+        if (i >= 0 && i < atom->nlocal) {
+          const tagint *pt = pair->store()->partners(i);
+          for (int s = 0; s < pair->store()->record_count(i); s++)
+            if (pt[s] == partner) pair->break_record(i, s, mode);
+        }
+        record_break(owner, partner, mode, worst);
+        broken++;
+        (mode == BreakMode::Tension ? tension : shear)++;
       }
-      broken++;
-      (mode == BreakMode::Tension ? tension : shear)++;
     }
+  }
+  if (breaks_fp) {
+    fclose(breaks_fp);
+    breaks_fp = nullptr;
   }
   pair->enable_breaking(true);
 
@@ -128,7 +160,8 @@ void LatticeQuasistatic::command(int narg, char **arg)
     utils::logmesg(lmp, "lattice/quasistatic: {} bonds broke ({} in tension, {} in shear) in {} "
                    "relaxations ({} {}); largest remaining ratio to the threshold {:.6g}\n",
                    broken, tension, shear, relaxations, steps,
-                   minimize ? "minimiser iterations" : "time steps", worst);
+                   local ? fmt::format("sweeps, {} particle moves", moves)
+                         : (minimize ? "minimiser iterations" : "time steps"), worst);
 }
 
 /* ----------------------------------------------------------------------
@@ -249,6 +282,17 @@ double LatticeQuasistatic::worst_bond(tagint &owner, tagint &partner, BreakMode 
       }
     }
   }
+  owner = best_owner;
+  partner = best_partner;
+  mode = best_mode;
+  return reduce_worst(best, owner, partner, mode);
+}
+
+double LatticeQuasistatic::reduce_worst(double best, tagint &owner, tagint &partner,
+                                        BreakMode &mode) const
+{
+  const tagint best_owner = owner, best_partner = partner;
+  const BreakMode best_mode = mode;
   double worst = 0.0;
   MPI_Allreduce(&best, &worst, 1, MPI_DOUBLE, MPI_MAX, world);
   // among the bonds of that ratio, the lowest IDs (and their mode)
@@ -287,4 +331,62 @@ bigint LatticeQuasistatic::break_beyond_threshold(int &tension, int &shear)
   tension += all[0];
   shear += all[1];
   return (bigint) all[0] + all[1];
+}
+
+/* ----------------------------------------------------------------------
+   relax local: passes of (force evaluation, set-up, relax and break until
+   no bond exceeds its threshold or a particle moved too far for the ghosts
+   and records of that evaluation).  A pass in which something moved or
+   broke is followed by another, whose force evaluation checks the state
+   with the pair style's own records (new contacts included)
+------------------------------------------------------------------------- */
+
+void LatticeQuasistatic::run_local(bigint &broken, int &tension, int &shear, bigint &relaxations,
+                                   bigint &sweeps, bigint &moves, double &worst)
+{
+  LatticeLocalRelax lr(lmp, pair, ftol, omega);
+  lr.check_model();
+  bool done = false;
+  while (!done) {
+    lr.probe_fixes();
+    command_quietly("run 0 post no");
+    lr.set_up();
+    bool changed = false;
+    while (true) {
+      const bigint before = sweeps;
+      const auto outcome = lr.relax(maxsteps, sweeps, moves);
+      if (sweeps > before) changed = true;
+      if (outcome == LatticeLocalRelax::Outcome::MOVED_FAR) break;
+      if (outcome == LatticeLocalRelax::Outcome::SWEEPS && comm->me == 0)
+        error->warning(FLERR, "lattice/quasistatic: {} sweeps did not relax the largest force "
+                       "component ({:.6g}) below ftol {:.6g}; raise maxsteps", maxsteps,
+                       lr.largest_force(), ftol);
+      relaxations++;
+      tagint owner = 0, partner = 0;
+      BreakMode mode = BreakMode::None;
+      const double best = lr.worst(owner, partner, mode);
+      worst = reduce_worst(best, owner, partner, mode);
+      if (!(worst > 1.0) || (maxbreak >= 0 && broken >= maxbreak)) {
+        done = !changed;
+        break;
+      }
+      lr.break_spring(owner, partner, mode);
+      record_break(owner, partner, mode, worst);
+      broken++;
+      (mode == BreakMode::Tension ? tension : shear)++;
+      changed = true;
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   keyword breaks: timestep, owner and partner IDs, mode and ratio of a
+   bond this command broke (break one), appended to the file
+------------------------------------------------------------------------- */
+
+void LatticeQuasistatic::record_break(tagint owner, tagint partner, BreakMode mode, double ratio)
+{
+  if (!breaks_fp) return;
+  fmt::print(breaks_fp, "{} {} {} {} {:.17g}\n", update->ntimestep, owner, partner,
+             mode == BreakMode::Tension ? "tension" : "shear", ratio);
 }

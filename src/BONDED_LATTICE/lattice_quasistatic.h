@@ -35,17 +35,28 @@ class LatticeQuasistatic : public Command {
   PairLatticeBond *pair = nullptr;
   double ftol = 0.0;            // force tolerance (force units): largest |f| of a particle
   bool minimize = true;         // relax by the minimiser, else by damped dynamics
+  bool local = false;           // relax local: over-relaxation where forces exceed ftol
+  double omega = 1.5;           // relax local: over-relaxation factor, 0 < omega < 2
   bigint chunk = 100;           // relax run: steps between force checks
   bigint maxsteps = 100000;     // per relaxation: minimiser iterations or time steps
   bool break_all = false;       // break every bond past its threshold, else the worst one
   bigint maxbreak = -1;         // most bonds broken in one call, -1: no limit
   bool quiet = false;           // no output of the relaxations (minimiser and run summaries)
+  std::string breaks_file;      // keyword breaks: a line per broken bond appended there
+  FILE *breaks_fp = nullptr;    // (rank 0)
+
+  void record_break(tagint owner, tagint partner, BreakMode mode, double ratio);
 
   void command_quietly(const std::string &line);
 
   bigint relax();               // returns the iterations or steps taken
   double largest_force() const;
   double worst_bond(tagint &owner, tagint &partner, BreakMode &mode) const;
+  // the largest of every rank's best ratio; equal ratios go to the lowest IDs
+  double reduce_worst(double best, tagint &owner, tagint &partner, BreakMode &mode) const;
+  // relax local: relaxations and breaks until no bond exceeds its threshold
+  void run_local(bigint &broken, int &tension, int &shear, bigint &relaxations, bigint &sweeps,
+                 bigint &moves, double &worst);
   bigint break_beyond_threshold(int &tension, int &shear);
 };
 
