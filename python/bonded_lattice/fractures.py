@@ -32,7 +32,7 @@ import numpy as np
 
 from .lattice import pairs_within
 
-__all__ = ["LINK", "REACH", "bond_midpoints", "fracture_labels", "intergranular_fraction",
+__all__ = ["BAND", "LINK", "REACH", "bond_midpoints", "fracture_labels", "intergranular_fraction",
            "layer_fractures", "radial_fractures"]
 
 #: Largest midpoint distance, in bond lengths d, of two broken bonds of one fracture: d, with
@@ -41,6 +41,8 @@ LINK = 1.1
 #: Default distance, in bond lengths d, beyond the growing grains that a radial fracture
 #: must reach (:func:`radial_fractures`).
 REACH = 3.0
+#: Width, in bond lengths d, of the band beyond ``reach`` in which radial fractures are counted.
+BAND = 2.0
 ROW = 0.5 * math.sqrt(3.0)     # row spacing of the triangular lattice, in units of d
 
 
@@ -52,7 +54,11 @@ def _check_d(d: float) -> float:
 
 def _check_pairs(pairs: np.ndarray, n: int) -> np.ndarray:
     """(m, 2) int64 of 1-based particle ids in 1..n (from the bond dump's id1, id2)."""
-    p = np.asarray(pairs, dtype=float).reshape(-1, 2) if len(pairs) else np.zeros((0, 2))
+    p = np.asarray(pairs, dtype=float)
+    if p.size == 0:
+        return np.zeros((0, 2), dtype=np.int64)
+    if p.ndim != 2 or p.shape[1] != 2:
+        raise ValueError(f"pairs have shape {p.shape}: need (m, 2), the columns id1 id2")
     if np.any(p != np.round(p)) or np.any(p < 1) or np.any(p > n):
         bad = p[(p != np.round(p)) | (p < 1) | (p > n)][0]
         raise ValueError(f"particle id {bad} is out of range: need whole ids 1 <= id <= {n}")
@@ -178,10 +184,14 @@ def radial_fractures(pairs: np.ndarray, positions: np.ndarray, growing: np.ndarr
     Broken bonds inside the growing grains (both particles growing) are left out; the rest
     are grouped into fractures (:func:`fracture_labels`).  A fracture starts at the grains
     when one of its bonds' midpoints lies within d of a growing particle: it has broken a
-    bond of the grains' boundary or one between two particles next to it.  Its parts
-    farther than ``reach`` x d from every growing particle, grouped by the same rule, are
-    its radial fractures: one for a single crack, one for each outward branch when cracks
-    that run out separately are joined at the boundary (by broken boundary bonds).  The
+    bond of the grains' boundary or one between two particles next to it.  The radial
+    fractures are the places where such fractures cross the contour at ``reach`` x d from
+    the grains: the fractures' bonds whose midpoints lie between reach and reach + 2 bond
+    lengths from the nearest growing particle, grouped by the same rule (a crack steps at
+    most d outwards from one bond to the next, so each crossing of the band leaves at least
+    two bonds in it).  A crack counts once when it reaches the contour, whether or not it
+    branches beyond it; cracks that leave the grains separately count separately even if
+    they join farther out or are joined at the boundary (by broken boundary bonds).  The
     default 3 d leaves out the one- and two-bond breaks of a crushed boundary.
     """
     pos = np.asarray(positions, dtype=float)
@@ -196,24 +206,36 @@ def radial_fractures(pairs: np.ndarray, positions: np.ndarray, growing: np.ndarr
     p = p[~(grows[p[:, 0] - 1] & grows[p[:, 1] - 1])]
     mid = bond_midpoints(p, pos)
     labels = _group(mid, d)
-    touch = _near(mid, pos[grows, :2], LINK * d)
-    far = ~_near(mid, pos[grows, :2], reach * d)
-    count = 0
-    for k in np.unique(labels[touch]).tolist():
-        out = (labels == k) & far
-        if out.any():
-            count += int(_group(mid[out], d).max()) + 1
-    return count
+    dist = _distance(mid, pos[_rim(pos, grows, d), :2], (reach + BAND) * d)
+    touching = np.isin(labels, np.unique(labels[dist <= LINK * d]))
+    band = touching & (dist >= reach * d) & (dist < (reach + BAND) * d)
+    return int(_group(mid[band], d).max()) + 1 if band.any() else 0
 
 
-def _near(points: np.ndarray, targets: np.ndarray, r: float) -> np.ndarray:
-    """Which points (m, 2) have a target (t, 2) within distance r."""
+def _rim(positions: np.ndarray, inside: np.ndarray, d: float) -> np.ndarray:
+    """Indices of the selected particles with fewer than six selected lattice neighbours.
+
+    For a point outside the selection the nearest selected particle is one of these: the
+    Voronoi cell of a triangular lattice point is bounded by its six neighbours alone, so a
+    point outside a particle's cell is closer to one of its neighbours.  Searching these
+    only keeps the search linear in the growing grains' perimeter, not their area.
+    """
+    idx = np.flatnonzero(inside)
+    p3 = np.zeros((len(idx), 3))
+    p3[:, :2] = positions[idx, :2]
+    i, j, _ = pairs_within(p3, (1.0 + 1e-6) * d)
+    count = np.bincount(i, minlength=len(idx)) + np.bincount(j, minlength=len(idx))
+    return idx[count < 6]
+
+
+def _distance(points: np.ndarray, targets: np.ndarray, r: float) -> np.ndarray:
+    """Distance from each point (m, 2) to the nearest target (t, 2), inf beyond r."""
     m = len(points)
     both = np.zeros((m + len(targets), 3))
     both[:m, :2] = points
     both[m:, :2] = targets
-    i, j, _ = pairs_within(both, r * (1.0 + 1e-9))
-    hit = np.zeros(m, dtype=bool)
+    i, j, dist = pairs_within(both, r)
+    out = np.full(m, np.inf)
     cross = (i < m) & (j >= m)
-    hit[i[cross]] = True
-    return hit
+    np.minimum.at(out, i[cross], dist[cross])
+    return out

@@ -210,9 +210,28 @@ def test_bad_parameters_name_the_value_and_the_range():
         layer_fractures(bonds[:3], pos, layer, 0.0)
     with pytest.raises(ValueError, match="particle id 61"):
         fracture_labels(np.array([[1, 61]]), pos, D)
+    with pytest.raises(ValueError, match=r"shape \(3, 3\)"):
+        intergranular_fraction(np.ones((3, 3)), np.zeros(len(pos), dtype=int))
     with pytest.raises(ValueError, match="selects no particle"):
         layer_fractures(bonds[:3], pos, np.zeros(len(pos), dtype=bool), D)
     with pytest.raises(ValueError, match="shape"):
         radial_fractures(bonds[:3], pos, layer[:5], D)
     with pytest.raises(ValueError, match="reach = 0.5"):
         radial_fractures(bonds[:3], pos, layer, D, reach=0.5)
+
+
+def test_two_radial_cracks_that_join_farther_out_are_two():
+    """A V: two cracks leave the disc (radius 4 d) 90 degrees apart and meet 20 d below its
+    centre; the band 3-5 d beyond the disc cuts both arms, more than 3 d apart there."""
+    pos, bonds = lattice(50, 58)
+    centre = np.array([25.3 * D, 25.1 * D])
+    disc = np.hypot(pos[:, 0] - centre[0], pos[:, 1] - centre[1]) < 4.0 * D
+    tip = centre + np.array([0.0, -20.0 * D])
+    arms = []
+    for t in (math.radians(-45.0), math.radians(-135.0)):
+        start = centre + 4.0 * D * np.array([math.cos(t), math.sin(t)])
+        arms += [crossing(pos, bonds, centre, start), crossing(pos, bonds, start, tip)]
+    broken = np.unique(np.vstack(arms), axis=0)
+    outside = broken[~(disc[broken[:, 0] - 1] & disc[broken[:, 1] - 1])]
+    assert set(fracture_labels(outside, pos, D).tolist()) == {0}     # one fracture
+    assert radial_fractures(broken, pos, disc, D) == 2
