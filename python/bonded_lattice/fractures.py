@@ -12,8 +12,9 @@ that only one intact bond separates (or that cut off a single particle).  The la
 needed: a crack opening normal to a row direction breaks mostly the bonds of that direction,
 stepping by d/2 from row to row (the en-echelon steps seen in the scene pictures), and its
 faces in consecutive rows are opposite sides of a rhombus, d apart; joining only faces that
-meet would cut such a crack into single bonds.  Two cracks are told apart when at least two
-intact bonds separate them.
+meet would cut such a crack into single bonds.  Two cracks are told apart when no bond of
+one lies within d of a bond of the other (two straight cracks across the rows 2 d apart are
+two).
 
 The measures of the scenes (issue 20, point 4), each on the broken bonds (id1, id2) of a
 run, 1-based ids into the initial positions:
