@@ -182,6 +182,21 @@ def _scene(args: argparse.Namespace):
                  atom_style=args.atom_style or ("sphere" if args.kind == "expanding" else "atomic"))
 
 
+def _fracture_line(summary: dict) -> str:
+    """The fracture measures of a scene's summary (those of its kind), one line."""
+    def num(value: float | None) -> str:
+        return "undefined" if value is None else f"{value:.3g}"
+
+    if "fractures_in_layer" in summary:
+        return (f"fractures crossing the layer {summary['fractures_in_layer']}; broken bonds "
+                f"in the layer {num(summary['fraction_in_layer'])}; spacing / thickness "
+                f"{num(summary['spacing_to_thickness'])}")
+    line = f"intergranular broken bonds {num(summary['intergranular_fraction'])}"
+    if "radial_fractures" in summary:
+        line += f"; radial fractures {summary['radial_fractures']}"
+    return line
+
+
 def cmd_scene(args: argparse.Namespace) -> int:
     from .scene_study import run_scene
     from .scenes import expected_memory, write_scene
@@ -209,6 +224,7 @@ def cmd_scene(args: argparse.Namespace) -> int:
           f"{summary['broken_shear']} shear) at strain {summary['strain']:.4g}; peak "
           f"stress {summary['peak_stress'] / 1e6:.4g} MPa; {orientation}; "
           f"{summary['steps']} steps or iterations; {summary['wall_time_s']} s")
+    print(_fracture_line(summary))
     print(f"wrote {out}/summary.json, broken_bonds.png, stress_strain.png")
     return 0
 

@@ -14,17 +14,38 @@ from pathlib import Path
 
 import numpy as np
 
+from .fractures import intergranular_fraction, layer_fractures, radial_fractures
 from .runner import RunResult
 from .scenes import (Scene, SceneModel, bond_angles, break_steps, broken_bonds, build_model,
                      crack_normal_stats, read_bond_dump, read_scene_dat, scene_title,
                      write_scene)
 from .study import Study
 
-__all__ = ["SceneStudy", "picture_scene", "run_scene", "summarize"]
+__all__ = ["SceneStudy", "fracture_summary", "picture_scene", "run_scene", "summarize"]
 
 
-def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray) -> dict:
-    """Measured results of a finished scene run (scene.dat and bonds.final.txt)."""
+def fracture_summary(scene: Scene, model: SceneModel, pairs: np.ndarray) -> dict:
+    """The geology a scene exists to show, from its broken bonds (id1, id2)
+    (:mod:`bonded_lattice.fractures`, docs/scenes.md): layer scenes
+    ``fractures_in_layer``, ``fraction_in_layer``, ``spacing_to_thickness`` (and the
+    ``layer_thickness`` and ``layer_fracture_x`` they come from); polycrystals and
+    expanding grains ``intergranular_fraction``; expanding grains ``radial_fractures``."""
+    positions = model.lattice.positions
+    if scene.kind.startswith("layer"):
+        return layer_fractures(pairs, positions, model.grain == 1, scene.d)
+    out = {"intergranular_fraction": intergranular_fraction(pairs, model.grain)}
+    if scene.kind == "expanding":
+        out["radial_fractures"] = radial_fractures(pairs, positions,
+                                                   np.isin(model.grain, model.expanding),
+                                                   scene.d)
+    return out
+
+
+def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray,
+              model: SceneModel | None = None) -> dict:
+    """Measured results of a finished scene run (scene.dat and bonds.final.txt); the
+    fracture measures (:func:`fracture_summary`) need the scene's ``model``
+    (:func:`bonded_lattice.scenes.build_model`, built here if not given)."""
     run_dir = Path(run_dir)
     dat = read_scene_dat(run_dir / "scene.dat")
     final = broken_bonds(run_dir / "bonds.final.txt")
@@ -38,7 +59,7 @@ def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray) -> dict:
     else:
         load = dat["sxx"]
     k_peak = int(np.argmax(load))
-    return {
+    summary = {
         "kind": scene.kind, "mode": scene.mode, "particles": scene.n,
         "strain": float(dat["exx"][-1]) if scene.kind != "expanding" else float(dat["growth"][-1]),
         "broken": int(len(final)), "broken_tension": int((final[:, 2] == 1).sum()),
@@ -48,6 +69,8 @@ def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray) -> dict:
         "steps": int(dat["step"][-1]),
         "orientation": crack_normal_stats(angles),
     }
+    summary.update(fracture_summary(scene, model or build_model(scene), final[:, :2]))
+    return summary
 
 
 class SceneStudy(Study):
@@ -74,7 +97,8 @@ class SceneStudy(Study):
         return f"the scene run failed in {self.out}: {result.error}"
 
     def _measure(self, result: RunResult) -> None:
-        self.measured = summarize(self.scene, self.out, self.model.lattice.positions)
+        self.measured = summarize(self.scene, self.out, self.model.lattice.positions,
+                                  self.model)
 
     def _plot(self) -> None:
         picture_scene(self.scene, self.out, self.model)

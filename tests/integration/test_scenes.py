@@ -15,6 +15,7 @@ import pytest
 from bonded_lattice import runner
 from bonded_lattice.conversion import BondParameters
 from bonded_lattice.lattice import pairs_within, read_grains
+from bonded_lattice.scene_study import fracture_summary
 from bonded_lattice.scenes import (Scene, box_lattice, break_steps, broken_bonds, build_model,
                                    central_spring_bond, plane_moduli, read_scene_dat,
                                    wall_masks, write_scene)
@@ -177,6 +178,8 @@ def test_competent_layer_breaks_first_under_extension(tmp_path):
     # need e = 0.8 Xb / d = 1.4e-4
     assert step == 10
     assert np.all(model.grain[pairs - 1] == 1)        # both ends in the layer
+    # the summary's measure of the same bonds (scene_study.fracture_summary): all in it
+    assert fracture_summary(scene, model, pairs)["fraction_in_layer"] == 1.0
 
 
 def test_expanding_grain_breaks_its_surroundings_first(tmp_path):
@@ -206,6 +209,7 @@ def test_dynamic_polycrystal_breaks_on_grain_boundaries_first(tmp_path):
     model = build_model(scene)
     _, pairs = first_broken(folder)
     assert np.all(model.grain[pairs[:, 0] - 1] != model.grain[pairs[:, 1] - 1])
+    assert fracture_summary(scene, model, pairs)["intergranular_fraction"] == 1.0
     final = broken_bonds(folder / "bonds.final.txt")
     assert len(final) > 0 and np.all(final[:, 2] == 1)
 

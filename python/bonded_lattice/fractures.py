@@ -1,0 +1,242 @@
+"""Fractures of a broken-bond set on the triangular lattice, and what they show.
+
+A broken bond opens a crack face across the bond: in the dual lattice (the honeycomb of the
+triangles' centroids) it is the dual edge of the bond, and a crack is a line of such edges.
+:func:`fracture_labels` groups broken bonds into fractures: two broken bonds belong to the
+same fracture when their midpoints (in the initial lattice) are at most one bond length d
+apart (:data:`LINK`).  In the triangular lattice the bond midpoints lie at d/2 (two sides of
+one triangle: their crack faces meet at its centroid), sqrt3/2 d (two bonds of one particle
+at 120 degrees), d (opposite sides of a rhombus, or two collinear bonds of one particle),
+and next at sqrt7/2 d = 1.32 d.  The rule therefore joins crack faces that meet, and faces
+that only one intact bond separates (or that cut off a single particle).  The latter are
+needed: a crack opening normal to a row direction breaks mostly the bonds of that direction,
+stepping by d/2 from row to row (the en-echelon steps seen in the scene pictures), and its
+faces in consecutive rows are opposite sides of a rhombus, d apart; joining only faces that
+meet would cut such a crack into single bonds.  Two cracks are told apart when no bond of
+one lies within d of a bond of the other (two straight cracks across the rows 2 d apart are
+two).
+
+The measures of the scenes (issue 20, point 4), each on the broken bonds (id1, id2) of a
+run, 1-based ids into the initial positions:
+
+- :func:`layer_fractures`: the fractures crossing a competent layer, their share of the
+  broken bonds and their spacing over the layer thickness;
+- :func:`intergranular_fraction`: the share of broken bonds joining two grains;
+- :func:`radial_fractures`: the fractures that start at growing grains and run outwards.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .lattice import pairs_within
+
+__all__ = ["BAND", "LINK", "REACH", "bond_midpoints", "fracture_labels", "intergranular_fraction",
+           "layer_fractures", "radial_fractures"]
+
+#: Largest midpoint distance, in bond lengths d, of two broken bonds of one fracture: d, with
+#: room for rounding (the next midpoint distance of the lattice is sqrt7/2 d = 1.32 d).
+LINK = 1.1
+#: Default distance, in bond lengths d, beyond the growing grains that a radial fracture
+#: must reach (:func:`radial_fractures`).
+REACH = 3.0
+#: Width, in bond lengths d, of the band beyond ``reach`` in which radial fractures are counted.
+BAND = 2.0
+ROW = 0.5 * math.sqrt(3.0)     # row spacing of the triangular lattice, in units of d
+
+
+def _check_d(d: float) -> float:
+    if not (d > 0 and math.isfinite(d)):
+        raise ValueError(f"d = {d} is out of range: need 0 < d < inf")
+    return float(d)
+
+
+def _check_pairs(pairs: np.ndarray, n: int) -> np.ndarray:
+    """(m, 2) int64 of 1-based particle ids in 1..n (from the bond dump's id1, id2)."""
+    p = np.asarray(pairs, dtype=float)
+    if p.size == 0:
+        return np.zeros((0, 2), dtype=np.int64)
+    if p.ndim != 2 or p.shape[1] != 2:
+        raise ValueError(f"pairs have shape {p.shape}: need (m, 2), the columns id1 id2")
+    if np.any(p != np.round(p)) or np.any(p < 1) or np.any(p > n):
+        bad = p[(p != np.round(p)) | (p < 1) | (p > n)][0]
+        raise ValueError(f"particle id {bad} is out of range: need whole ids 1 <= id <= {n}")
+    return p.astype(np.int64)
+
+
+def _check_mask(mask: np.ndarray, n: int, name: str) -> np.ndarray:
+    m = np.asarray(mask)
+    if m.dtype != bool or m.shape != (n,):
+        raise ValueError(f"{name} has shape {m.shape} and dtype {m.dtype}: need a boolean "
+                         f"array of one value per particle, shape ({n},)")
+    if not m.any():
+        raise ValueError(f"{name} selects no particle: need at least one")
+    return m
+
+
+def bond_midpoints(pairs: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """(m, 2) midpoints (x, y) of bonds (id1, id2), 1-based ids into ``positions``."""
+    pos = np.asarray(positions, dtype=float)
+    p = _check_pairs(pairs, len(pos))
+    return 0.5 * (pos[p[:, 0] - 1, :2] + pos[p[:, 1] - 1, :2])
+
+
+def _components(n: int, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+    """Connected components of n nodes joined by edges (i, j): labels 0, 1, ... in the
+    order of each component's first node."""
+    parent = list(range(n))
+
+    def root(a: int) -> int:
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    for a, b in zip(i.tolist(), j.tolist()):
+        ra, rb = root(a), root(b)
+        if ra != rb:
+            parent[max(ra, rb)] = min(ra, rb)
+    roots = np.array([root(a) for a in range(n)], dtype=np.int64)
+    _, labels = np.unique(roots, return_inverse=True)
+    return labels.astype(np.int64)
+
+
+def _group(midpoints: np.ndarray, d: float) -> np.ndarray:
+    """Fracture label of every midpoint: components of the midpoints at most LINK d apart."""
+    m = len(midpoints)
+    if m == 0:
+        return np.zeros(0, dtype=np.int64)
+    p3 = np.zeros((m, 3))
+    p3[:, :2] = midpoints
+    i, j, _ = pairs_within(p3, LINK * d)
+    return _components(m, i, j)
+
+
+def fracture_labels(pairs: np.ndarray, positions: np.ndarray, d: float) -> np.ndarray:
+    """Fracture label (0, 1, ...) of every broken bond (id1, id2): broken bonds whose
+    midpoints in ``positions`` (the initial lattice of bond length d) are at most d apart
+    belong to one fracture (the module's rule), and so do chains of them."""
+    return _group(bond_midpoints(pairs, positions), _check_d(d))
+
+
+def intergranular_fraction(pairs: np.ndarray, grain: np.ndarray) -> float | None:
+    """Share of the broken bonds (id1, id2) whose particles lie in different grains
+    (``grain``: one id per particle); None without broken bonds."""
+    g = np.asarray(grain).reshape(-1)
+    p = _check_pairs(pairs, len(g))
+    if len(p) == 0:
+        return None
+    return float(np.mean(g[p[:, 0] - 1] != g[p[:, 1] - 1]))
+
+
+def layer_fractures(pairs: np.ndarray, positions: np.ndarray, layer: np.ndarray,
+                    d: float) -> dict:
+    """The fractures of a competent layer parallel to x (``layer``: its particles).
+
+    Returns ``fraction_in_layer``, the share of broken bonds with both particles in the
+    layer (None without broken bonds); ``fractures_in_layer``, the number of fractures
+    crossing the layer; ``layer_fracture_x``, their positions along x (sorted);
+    ``layer_thickness``; and ``spacing_to_thickness``, the mean gap between neighbouring
+    crossing fractures over the layer thickness (None with fewer than two).
+
+    The layer's fractures are the fractures (:func:`fracture_labels`) of its own broken
+    bonds, those with both particles in it: a crack that crosses the layer twice, joined
+    through the matrix, is two crossings.  One of them crosses the layer when its broken
+    bonds reach from within one row spacing (sqrt3/2 d) of the lower interface to within
+    one row spacing of the upper one, the interfaces lying half a row outside the layer's
+    outer particle rows: it has broken the outer row's bonds or those between the outer
+    row and the next, on both sides.  Its position is the mean x of its bonds' midpoints.
+    The thickness is the distance between the interfaces, (rows of the layer) x sqrt3/2 d,
+    the convention of the box height.  The spacing uses the gaps between neighbouring
+    crossing fractures only: the box's side walls, where the load is applied, are not
+    fractures, so the matrix beyond the outermost crossings does not count.
+    """
+    pos = np.asarray(positions, dtype=float)
+    d = _check_d(d)
+    p = _check_pairs(pairs, len(pos))
+    inside = _check_mask(layer, len(pos), "layer")
+    y = pos[inside, 1]
+    y_bot, y_top = float(y.min()), float(y.max())
+    row = ROW * d
+    thickness = y_top - y_bot + row
+    both = inside[p[:, 0] - 1] & inside[p[:, 1] - 1] if len(p) else np.zeros(0, dtype=bool)
+    mid = bond_midpoints(p[both], pos)
+    labels = _group(mid, d)
+    tol = 1e-6 * d
+    xs = []
+    for k in range(int(labels.max()) + 1 if len(labels) else 0):
+        mk = mid[labels == k]
+        if mk[:, 1].min() <= y_bot + 0.5 * row + tol and mk[:, 1].max() >= y_top - 0.5 * row - tol:
+            xs.append(float(mk[:, 0].mean()))
+    xs.sort()
+    spacing = float(np.mean(np.diff(xs))) / thickness if len(xs) >= 2 else None
+    return {"fractures_in_layer": len(xs),
+            "fraction_in_layer": float(both.mean()) if len(p) else None,
+            "spacing_to_thickness": spacing, "layer_thickness": thickness,
+            "layer_fracture_x": xs}
+
+
+def radial_fractures(pairs: np.ndarray, positions: np.ndarray, growing: np.ndarray, d: float,
+                     reach: float = REACH) -> int:
+    """Number of radial fractures around growing grains (``growing``: their particles).
+
+    Broken bonds inside the growing grains (both particles growing) are left out; the rest
+    are grouped into fractures (:func:`fracture_labels`).  A fracture starts at the grains
+    when one of its bonds' midpoints lies within d of a growing particle: it has broken a
+    bond of the grains' boundary or one between two particles next to it.  The radial
+    fractures are the places where such fractures cross the contour at ``reach`` x d from
+    the grains: the fractures' bonds whose midpoints lie between reach and reach + 2 bond
+    lengths from the nearest growing particle, grouped by the same rule (a crack steps at
+    most d outwards from one bond to the next, so each crossing of the band leaves at least
+    two bonds in it).  A crack counts once when it reaches the contour, whether or not it
+    branches beyond it; cracks that leave the grains separately count separately even if
+    they join farther out or are joined at the boundary (by broken boundary bonds).  The
+    default 3 d leaves out the one- and two-bond breaks of a crushed boundary.
+    """
+    pos = np.asarray(positions, dtype=float)
+    d = _check_d(d)
+    if not (reach >= 1 and math.isfinite(reach)):
+        raise ValueError(f"reach = {reach} is out of range: need 1 <= reach < inf "
+                         "(bond lengths beyond the growing grains)")
+    p = _check_pairs(pairs, len(pos))
+    grows = _check_mask(growing, len(pos), "growing")
+    if len(p) == 0:
+        return 0
+    p = p[~(grows[p[:, 0] - 1] & grows[p[:, 1] - 1])]
+    mid = bond_midpoints(p, pos)
+    labels = _group(mid, d)
+    dist = _distance(mid, pos[_rim(pos, grows, d), :2], (reach + BAND) * d)
+    touching = np.isin(labels, np.unique(labels[dist <= LINK * d]))
+    band = touching & (dist >= reach * d) & (dist < (reach + BAND) * d)
+    return int(_group(mid[band], d).max()) + 1 if band.any() else 0
+
+
+def _rim(positions: np.ndarray, inside: np.ndarray, d: float) -> np.ndarray:
+    """Indices of the selected particles with fewer than six selected lattice neighbours.
+
+    For a point outside the selection the nearest selected particle is one of these: the
+    Voronoi cell of a triangular lattice point is bounded by its six neighbours alone, so a
+    point outside a particle's cell is closer to one of its neighbours.  Searching these
+    only keeps the search linear in the growing grains' perimeter, not their area.
+    """
+    idx = np.flatnonzero(inside)
+    p3 = np.zeros((len(idx), 3))
+    p3[:, :2] = positions[idx, :2]
+    i, j, _ = pairs_within(p3, (1.0 + 1e-6) * d)
+    count = np.bincount(i, minlength=len(idx)) + np.bincount(j, minlength=len(idx))
+    return idx[count < 6]
+
+
+def _distance(points: np.ndarray, targets: np.ndarray, r: float) -> np.ndarray:
+    """Distance from each point (m, 2) to the nearest target (t, 2), inf beyond r."""
+    m = len(points)
+    both = np.zeros((m + len(targets), 3))
+    both[:m, :2] = points
+    both[m:, :2] = targets
+    i, j, dist = pairs_within(both, r)
+    out = np.full(m, np.inf)
+    cross = (i < m) & (j >= m)
+    np.minimum.at(out, i[cross], dist[cross])
+    return out
