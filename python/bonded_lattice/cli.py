@@ -175,7 +175,7 @@ def _scene(args: argparse.Namespace):
                  strength_min=args.strength[0], strength_max=args.strength[1],
                  boundary_strength=args.boundary_strength, seed=args.grain_seed,
                  n_expanding=args.expanding, mode=args.mode, strain_step=args.strain_step,
-                 n_steps=args.steps, ftol=args.ftol, crossings=args.crossings,
+                 n_steps=args.steps, ftol=args.ftol, relax=args.relax, crossings=args.crossings,
                  damping=args.damping, output_every=args.output_every,
                  bond_dumps=args.bond_dumps, dt_fraction=args.dt_fraction,
                  deformation=args.deformation,

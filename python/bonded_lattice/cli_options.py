@@ -29,7 +29,7 @@ from .decks import ELASTIC_LOADS, GRIPS, SHEAR_FRAMES, TESTS
 from .experiment import END_CHOICES, plan_test, run_test
 from .grains import GrainModel, GrainPairOptions
 from .lattice import ATOM_STYLES
-from .scenes import DEFORMATIONS, KINDS, MODES, Scene
+from .scenes import DEFORMATIONS, KINDS, MODES, RELAXATIONS, Scene
 from .schedules import DEFAULT_CROSSINGS_BY_TEST, DEFAULT_LOADING, SCHEDULE_ALIASES, SCHEDULES
 
 __all__ = ["OPTIONS", "TEST_DEFAULTS", "add", "heterogeneity_options", "plan_options",
@@ -249,7 +249,8 @@ SCENE_NUMBERS = {
         "n_steps": ("--steps", "strain steps (default %(default)s)"),
         "strain_step": ("--strain-step", "strain (or grain growth) per step (default "
                         "%(default)g)"),
-        "ftol": ("--ftol", "relaxation tolerance, fraction of Kn Xb (default %(default)g)"),
+        "ftol": ("--ftol", "relaxation tolerance, fraction of Kn Xb (default: 1e-3 with "
+                 "--relax fire, 1e-4 with --relax local)"),
         "dt_fraction": ("--dt-fraction", "dynamic: time step as a fraction of the critical "
                         "one (default %(default)s, at most 0.5)"),
     },
@@ -274,6 +275,9 @@ def scene_options(p: argparse.ArgumentParser) -> None:
     s = _field_defaults(Scene)
     p.add_argument("kind", choices=KINDS)
     p.add_argument("--mode", choices=MODES, default=s["mode"])
+    p.add_argument("--relax", choices=RELAXATIONS, default=s["relax"],
+                   help="quasistatic: relax by FIRE over the whole box (default) or by "
+                   "lattice/quasistatic relax local, where the forces exceed the tolerance")
     p.add_argument("--deformation", choices=DEFORMATIONS, default=s["deformation"],
                    help="pure shear (default: the other axis keeps the area) or uniaxial (the "
                    "walls across the other axis held)")
@@ -286,7 +290,9 @@ def scene_options(p: argparse.ArgumentParser) -> None:
     for title, numbers in SCENE_NUMBERS.items():
         group = p.add_argument_group(title)
         for name, (flag, text) in numbers.items():
-            group.add_argument(flag, type=type(s[name]), default=s[name], help=text)
+            # a field whose default is None (chosen later) takes a number
+            kind = float if s[name] is None else type(s[name])
+            group.add_argument(flag, type=kind, default=s[name], help=text)
     add(p, "crossings", s["crossings"],
         help="dynamic: P-wave crossings of the box over the whole loading (default %(default)g)")
     add(p, "damping", s["damping"], help="dynamic: factor on the papers' damping "

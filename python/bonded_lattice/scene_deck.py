@@ -142,13 +142,18 @@ def _quasistatic(scene: Scene, fb: float) -> str:
         # the bond records every few strain steps, to date the breaks (break_steps)
         dumps = (f"if \"$(v_k%{scene.bond_dumps}) == 0\" then "
                  f"\"write_dump all local bonds.${{k}}.txt {BOND_RECORDS}\"\n")
+    if scene.relax == "local":
+        how = "over-relaxation where the forces exceed the tolerance, relax local"
+        minimizer, relax = "", "relax local quiet yes "
+    else:
+        how, minimizer, relax = "FIRE", "min_style       fire\n", ""
     return f"""
 # ---- quasi-static loading (the seed's loop): {scene.n_steps} steps ----
 # {what};
-# then relax (FIRE) until no force component exceeds {scene.ftol:g} x Kn Xb, break the
-# most over-stressed bond, relax again, ... until no bond exceeds its threshold
-min_style       fire
-{thermo(THERMO_COLUMNS + " pe", 1000000)}run             0 post no
+# then relax ({how}) until no force component exceeds {scene.relax_tolerance:g} x Kn Xb,
+# break the most over-stressed bond, relax again, ... until no bond exceeds its threshold;
+# breaks.txt: every break in order (time step, IDs, mode, ratio to the threshold)
+{minimizer}{thermo(THERMO_COLUMNS + " pe", 1000000)}run             0 post no
 variable        growth equal 0
 variable        k equal 0
 print           "# {' '.join(SCENE_COLUMNS)}" file scene.dat screen no
@@ -159,7 +164,7 @@ variable        nsteps index {scene.n_steps}
 variable        k loop ${{nsteps}}
 label           strain
 {step}
-lattice/quasistatic ftol {scene.ftol * fb:.6g} break one maxsteps {scene.maxsteps}
+lattice/quasistatic ftol {scene.relax_tolerance * fb:.6g} {relax}break one maxsteps {scene.maxsteps} breaks breaks.txt
 run             0 post no
 print           "{_line_vars()}" append scene.dat screen no
 {dumps}next            k

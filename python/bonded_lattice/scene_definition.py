@@ -22,6 +22,13 @@ KINDS = ("layer-extension", "layer-compression", "polycrystal", "expanding")
 # or uniaxial (the other axis' walls stay where they are)
 DEFORMATIONS = ("pure-shear", "uniaxial")
 MODES = ("quasistatic", "dynamic")
+# how a quasi-static step relaxes: LAMMPS' FIRE minimiser over the whole box, or
+# lattice/quasistatic relax local (over-relaxation where the forces exceed the tolerance)
+RELAXATIONS = ("fire", "local")
+# the default tolerance of each, a fraction of Kn Xb: relax local leaves smoother errors at
+# the same largest force, and needs a ten times smaller one for FIRE's sequence of breaks
+# (docs/lattice_quasistatic.rst, "Accuracy")
+DEFAULT_FTOL = {"fire": 1.0e-3, "local": 1.0e-4}
 SQRT3 = math.sqrt(3.0)
 ROW = 0.5 * SQRT3            # row spacing of the hexagonal lattice, in units of d
 
@@ -104,13 +111,14 @@ class Scene:
     deformation: str = "pure-shear"
     strain_step: float = 2.0e-5
     n_steps: int = 30
-    ftol: float = 1.0e-3
+    ftol: float | None = None      # None: DEFAULT_FTOL of the relaxation
     crossings: float = 50.0
     dt_fraction: float = 0.19
     damping: float = 1.0
     output_every: int = 1          # strain steps between scene.dat lines (dynamic: the equivalent)
     bond_dumps: int = 0            # >0: bonds.<step>.txt every this many strain steps
     maxsteps: int = 100000         # per relaxation (lattice/quasistatic maxsteps)
+    relax: str = "fire"            # quasistatic: RELAXATIONS
     # "atomic": per-type mass and pair_style lattice/bond diameter d (less memory); not
     # for expanding grains, whose particles need their own diameters
     atom_style: str = "sphere"
@@ -137,8 +145,11 @@ class Scene:
         if self.bond.Ks != 0.0 or self.bond.mu_p != 0.0:
             raise ValueError(f"Ks = {self.bond.Ks}, mu_p = {self.bond.mu_p}: the scenes are the "
                              "seed's central springs, need Ks = 0 and mu_p = 0")
-        for name in ("d", "rho", "layer_thickness", "layer_contrast", "strain_step", "ftol",
-                     "crossings", "dt_fraction"):
+        if self.relax not in RELAXATIONS:
+            raise ValueError(f"relax = {self.relax!r} is not known: use one of "
+                             f"{', '.join(RELAXATIONS)}")
+        for name in ("d", "rho", "layer_thickness", "layer_contrast", "strain_step",
+                     "relax_tolerance", "crossings", "dt_fraction"):
             value = getattr(self, name)
             if not (value > 0 and math.isfinite(value)):
                 raise ValueError(f"{name} = {value} is out of range: need 0 < {name} < inf")
@@ -161,6 +172,11 @@ class Scene:
             raise ValueError(f"n_grains = {self.n_grains}: a polycrystal needs >= 2 grains")
         # checks the strength and seed ranges
         self.pair_options()
+
+    @property
+    def relax_tolerance(self) -> float:
+        """The relaxation tolerance, a fraction of Kn Xb: ftol, or the relaxation's default."""
+        return DEFAULT_FTOL[self.relax] if self.ftol is None else self.ftol
 
     @property
     def rows(self) -> int:

@@ -54,13 +54,13 @@ from .scene_analysis import bond_angles, break_steps, broken_bonds, crack_normal
 from .scene_deck import (ATOMIC_SAVING_PER_PARTICLE, BYTES_PER_PARTICLE, BYTES_PER_RANK,
                          DATA_FILE, SCENE_COLUMNS, TITLES, deck_text, expected_memory,
                          read_scene_dat, scene_title, write_scene)
-from .scene_definition import (DEFORMATIONS, KINDS, MODES, ROW, SQRT3, Scene,
-                               central_spring_bond, plane_moduli)
+from .scene_definition import (DEFAULT_FTOL, DEFORMATIONS, KINDS, MODES, RELAXATIONS, ROW,
+                               SQRT3, Scene, central_spring_bond, plane_moduli)
 from .scene_model import (SceneModel, box_lattice, build_model, expanding_grains, grain_model,
                           wall_masks)
 
 __all__ = ["ATOMIC_SAVING_PER_PARTICLE", "BYTES_PER_PARTICLE", "BYTES_PER_RANK", "DATA_FILE",
-           "DEFORMATIONS", "KINDS", "MODES", "ROW", "SCENE_COLUMNS", "SQRT3", "TITLES",
+           "DEFAULT_FTOL", "DEFORMATIONS", "KINDS", "MODES", "RELAXATIONS", "ROW", "SCENE_COLUMNS", "SQRT3", "TITLES",
            "Scene", "SceneModel", "bond_angles", "box_lattice", "break_steps", "broken_bonds",
            "build_model", "central_spring_bond", "crack_normal_stats", "deck_text",
            "expanding_grains", "expected_memory", "grain_model",

@@ -7,7 +7,8 @@
    time-step check) packs and unpacks its own, and the pair style carries
    them (PairLatticeBond::pack_forward_comm and the others route to the part
    that asked).  A part sends at most the pair's comm_forward / comm_reverse
-   values per atom.
+   values per atom, or, naming the count, up to 3 in reverse (LAMMPS sizes
+   its buffers for the 3 force components of every atom style).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_LATTICE_COMM_H
@@ -39,7 +40,8 @@ class LatticeReversePart {
 class LatticeCommCarrier {
  public:
   virtual void carry_forward(LatticeForwardPart *part) = 0;
-  virtual void carry_reverse(LatticeReversePart *part) = 0;
+  // values: per atom, 0 = the pair's comm_reverse; at most 3
+  virtual void carry_reverse(LatticeReversePart *part, int values = 0) = 0;
 
  protected:
   ~LatticeCommCarrier() = default;

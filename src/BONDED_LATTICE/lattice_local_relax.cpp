@@ -265,7 +265,7 @@ void LatticeLocalRelax::build_springs()
   for (stiff_part = 0; stiff_part < 2; stiff_part++) {
     for (int g = 0; g < nall - nlocal; g++)
       for (int c = 0; c < 3; c++) ghost_force[3 * (size_t) g + c] = ghost_stiff[6 * (size_t) g + 3 * stiff_part + c];
-    pair->carry_reverse(this);
+    pair->carry_reverse(this, 3);
   }
 
   // the ratio tournament
@@ -472,7 +472,7 @@ void LatticeLocalRelax::move(int a)
 void LatticeLocalRelax::exchange_forces()
 {
   comm_mode = Comm::FORCE;
-  pair->carry_reverse(this);
+  pair->carry_reverse(this, 3);
 }
 
 LatticeLocalRelax::Outcome LatticeLocalRelax::relax(bigint maxsweeps, bigint &sweeps, bigint &moves)
@@ -578,6 +578,25 @@ void LatticeLocalRelax::break_spring(tagint owner, tagint partner, BreakMode mod
     recompute(k);
     return;
   }
+}
+
+bigint LatticeLocalRelax::break_beyond_threshold(int &tension, int &shear)
+{
+  int counts[2] = {0, 0}, all[2] = {0, 0};
+  for (int k = 0; k < (int) springs.size(); k++) {
+    if (!springs[k].intact) continue;
+    double f[3];
+    BreakMode mode;
+    if (!(spring_force(springs[k], f, mode) > 1.0)) continue;
+    pair->break_record(springs[k].i, springs[k].slot, mode);
+    springs[k].intact = false;
+    recompute(k);
+    counts[mode == BreakMode::Tension ? 0 : 1]++;
+  }
+  MPI_Allreduce(counts, all, 2, MPI_INT, MPI_SUM, world);
+  tension += all[0];
+  shear += all[1];
+  return (bigint) all[0] + all[1];
 }
 
 double LatticeLocalRelax::largest_force()

@@ -62,6 +62,9 @@ class LatticeLocalRelax : protected Pointers, public LatticeForwardPart, public 
   // break the spring owner-partner (found by worst) in the given mode; the
   // forces it no longer carries are applied by the next relax; collective
   void break_spring(tagint owner, tagint partner, BreakMode mode);
+  // break every intact spring whose ratio exceeds 1 (break all); counts by
+  // mode over all ranks; collective
+  bigint break_beyond_threshold(int &tension, int &shear);
   // largest free force component (as the minimiser's norm max); collective
   double largest_force();
 

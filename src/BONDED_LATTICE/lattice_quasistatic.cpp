@@ -370,11 +370,15 @@ void LatticeQuasistatic::run_local(bigint &broken, int &tension, int &shear, big
         done = !changed;
         break;
       }
+      changed = true;
+      if (break_all) {
+        broken += lr.break_beyond_threshold(tension, shear);
+        continue;
+      }
       lr.break_spring(owner, partner, mode);
       record_break(owner, partner, mode, worst);
       broken++;
       (mode == BreakMode::Tension ? tension : shear)++;
-      changed = true;
     }
   }
 }

@@ -36,7 +36,7 @@ class LatticeQuasistatic : public Command {
   double ftol = 0.0;            // force tolerance (force units): largest |f| of a particle
   bool minimize = true;         // relax by the minimiser, else by damped dynamics
   bool local = false;           // relax local: over-relaxation where forces exceed ftol
-  double omega = 1.5;           // relax local: over-relaxation factor, 0 < omega < 2
+  double omega = 1.95;          // relax local: over-relaxation factor, 0 < omega < 2
   bigint chunk = 100;           // relax run: steps between force checks
   bigint maxsteps = 100000;     // per relaxation: minimiser iterations or time steps
   bool break_all = false;       // break every bond past its threshold, else the worst one

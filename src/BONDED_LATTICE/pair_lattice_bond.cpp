@@ -494,10 +494,13 @@ void PairLatticeBond::carry_forward(LatticeForwardPart *part)
   forward_part = nullptr;
 }
 
-void PairLatticeBond::carry_reverse(LatticeReversePart *part)
+void PairLatticeBond::carry_reverse(LatticeReversePart *part, int values)
 {
+  if (values > 3 && values > comm_reverse)
+    error->all(FLERR, "Internal error: a part of pair_style lattice/bond sends {} values per atom "
+               "in reverse communication, more than 3 or comm_reverse {}", values, comm_reverse);
   reverse_part = part;
-  comm->reverse_comm(this);
+  comm->reverse_comm(this, MAX(values, comm_reverse));
   reverse_part = nullptr;
 }
 

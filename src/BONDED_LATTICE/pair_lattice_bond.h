@@ -63,7 +63,7 @@ class PairLatticeBond : public Pair, public LatticeCommCarrier, public LatticeEn
   int pack_reverse_comm(int, int, double *) override;
   void unpack_reverse_comm(int, int *, double *) override;
   void carry_forward(LatticeForwardPart *part) override;
-  void carry_reverse(LatticeReversePart *part) override;
+  void carry_reverse(LatticeReversePart *part, int values = 0) override;
 
   // ---- query API for other styles (pair_lattice_bond_query.cpp) ----
 

@@ -1,5 +1,6 @@
 """Command lattice/quasistatic on a chain worked out by hand, and on a heterogeneous block on
-1 and 2 ranks.
+1 and 2 ranks; each with the minimiser (FIRE, LAMMPS' own) and with relax local, which must
+break the same bonds in the same order.
 
 The chain: four particles 1-2-3-4 in a row (types 1-4), bonds 1-2, 2-3, 3-4 with the same Kn
 and breaking stretches Xb = (1, 1.05, 2) X0. Particle 1 is held, particle 4 is moved by u and
@@ -72,16 +73,21 @@ def chain_states(lmp) -> list[int]:
     return [s[bond][0] for bond in CHAIN]
 
 
-def test_break_one_breaks_the_most_overstressed_bond_only(lmp_instance):
+# the relaxations: the minimiser, and relax local (over-relaxation)
+RELAX = ["", " relax local"]
+
+
+@pytest.mark.parametrize("relax", RELAX)
+def test_break_one_breaks_the_most_overstressed_bond_only(lmp_instance, relax):
     lmp = lmp_instance
-    pulled_chain(lmp, 0.9, "ftol 1.0e-6")
+    pulled_chain(lmp, 0.9, "ftol 1.0e-6" + relax)
     s = states(lmp)
     # below every threshold: the relaxed chain shares the stretch equally
     assert [s[bond][0] for bond in CHAIN] == [0, 0, 0]
     np.testing.assert_allclose([s[bond][1] for bond in CHAIN],
                                [0.9, 0.9 / 1.05, 0.45], rtol=1e-6)
     pull(lmp, 3 * 0.2 * X0)  # u/3 = 1.1 X0
-    lmp.command("lattice/quasistatic ftol 1.0e-6 break one")
+    lmp.command("lattice/quasistatic ftol 1.0e-6 break one" + relax)
     s = states(lmp)
     assert s[(1, 2)][0] == 1  # broken in tension
     assert s[(2, 3)][0] == 0 and s[(3, 4)][0] == 0
@@ -94,15 +100,17 @@ def test_break_one_breaks_the_most_overstressed_bond_only(lmp_instance):
     assert s[(2, 3)][1] == pytest.approx(0.0, abs=1e-6)
 
 
-def test_break_all_breaks_every_bond_past_its_threshold(lmp_instance):
+@pytest.mark.parametrize("relax", RELAX)
+def test_break_all_breaks_every_bond_past_its_threshold(lmp_instance, relax):
     lmp = lmp_instance
-    pulled_chain(lmp, 1.1, "ftol 1.0e-6 break all")
+    pulled_chain(lmp, 1.1, "ftol 1.0e-6 break all" + relax)
     assert chain_states(lmp) == [1, 1, 0]
 
 
-def test_maxbreak_zero_only_relaxes(lmp_instance):
+@pytest.mark.parametrize("relax", RELAX)
+def test_maxbreak_zero_only_relaxes(lmp_instance, relax):
     lmp = lmp_instance
-    pulled_chain(lmp, 1.1, "ftol 1.0e-6 maxbreak 0")
+    pulled_chain(lmp, 1.1, "ftol 1.0e-6 maxbreak 0" + relax)
     assert chain_states(lmp) == [0, 0, 0]
     assert states(lmp)[(1, 2)][1] == pytest.approx(1.1, rel=1e-6)
 
@@ -133,7 +141,9 @@ def test_minimize_with_shear_springs_is_refused(tmp_path):
     ("tol 1", r"lattice/quasistatic needs: ftol F"),
     ("ftol 1 break some", r"break some is not valid: use one or all"),
     ("ftol 1 relax run 0", r"relax run 0 is out of range: need >= 1 step"),
-    ("ftol 1 relax fire", r"relax fire is not valid: use minimize or run N"),
+    ("ftol 1 relax fire", r"relax fire is not valid: use minimize, run N or local"),
+    ("ftol 1 relax local omega 2", r"omega 2 is out of range: need 0 < omega < 2"),
+    ("ftol 1 relax local", r"relax local needs bonds without shear springs"),
     ("ftol 1 maxsteps 0", r"maxsteps 0 is out of range"),
     ("ftol 1 colour red", r"Unknown lattice/quasistatic keyword colour"),
 ])
@@ -144,7 +154,8 @@ def test_bad_quasistatic_input_names_the_value(tmp_path, args, message):
     assert re.search(message, result.output), result.output[-1500:]
 
 
-# Ks = 0 and mu_p = 0: the chain's central springs, in a heterogeneous block
+# Ks = 0 and mu_p = 0: the chain's central springs, in a heterogeneous block; {relax}: the
+# relaxation's keywords (ftol 1e-3 N is 1e-7 of a bond's breaking force Kn Xb)
 QS_BLOCK = block_2d_deck("-2 24 -2 24", "0 20 0 20", coeffs=None) + patchy_grains(
     "5.0e-3", 7, 0.4, 2.3) + pair_lines(coeffs(QUARTZ[2], Ks=0.0, mu_p=0.0),
                                         "stiffness d_stiff grain i_grain strength 0.7 1.3 seed 31") + """\
@@ -161,7 +172,7 @@ min_style       fire
 variable        k loop 6
 label           loop
 displace_atoms  top move 0 6.0e-7 0 units box
-lattice/quasistatic ftol 1.0e-3 break one
+lattice/quasistatic ftol 1.0e-3 break one breaks breaks.txt{relax}
 next            k
 jump            SELF loop
 compute         bl all lattice/bond/local id1 id2 state
@@ -170,19 +181,49 @@ run             0
 """
 
 
-def test_quasistatic_block_breaks_the_same_bonds_on_one_and_two_ranks(tmp_path):
-    tables = {}
-    for np_ in (1, 2):
-        work = tmp_path / f"np{np_}"
-        result = run_deck(QS_BLOCK, work, np=np_)
-        assert result.returncode == 0, result.output[-2000:]
-        counts = [int(m) for m in re.findall(r"lattice/quasistatic: (\d+) bonds broke", result.output)]
-        rows = read_local_dump(work / "bonds.txt")[1].astype(int)
-        tables[np_] = (counts, rows[np.lexsort((rows[:, 1], rows[:, 0]))])
-    (c1, t1), (c2, t2) = tables[1], tables[2]
+def quasistatic_block(work, np_: int, relax: str) -> tuple[list[int], np.ndarray, list[list[str]]]:
+    """The block's broken-bond counts per call, its final bond table (sorted) and its breaks
+    in order (IDs and mode)."""
+    result = run_deck(QS_BLOCK.format(relax=relax), work, np=np_)
+    assert result.returncode == 0, result.output[-2000:]
+    counts = [int(m) for m in re.findall(r"lattice/quasistatic: (\d+) bonds broke", result.output)]
+    rows = read_local_dump(work / "bonds.txt")[1].astype(int)
+    order = [line.split()[1:4] for line in (work / "breaks.txt").read_text().splitlines()]
+    return counts, rows[np.lexsort((rows[:, 1], rows[:, 0]))], order
+
+
+@pytest.mark.parametrize("relax", RELAX)
+def test_quasistatic_block_breaks_the_same_bonds_on_one_and_two_ranks(tmp_path, relax):
+    c1, t1, o1 = quasistatic_block(tmp_path / "np1", 1, relax)
+    c2, t2, o2 = quasistatic_block(tmp_path / "np2", 2, relax)
     assert sum(c1) > 5, "the test must break bonds"
     assert c1 == c2
     np.testing.assert_array_equal(t1, t2)
+    assert o1 == o2
+
+
+def test_relax_local_breaks_what_the_minimiser_breaks_in_its_order(tmp_path):
+    """LAMMPS' FIRE minimiser is the reference: relax local must find the same equilibria to
+    the resolution that decides the order of the breaks (both at ftol 1e-7 of Kn Xb here)."""
+    counts, table, order = quasistatic_block(tmp_path / "fire", 1, "")
+    local = quasistatic_block(tmp_path / "local", 1, " relax local")
+    assert sum(counts) > 5, "the test must break bonds"
+    assert local[0] == counts
+    np.testing.assert_array_equal(local[1], table)
+    assert local[2] == order
+
+
+# relax local treats fix setforce holding components at 0.0; other forces it does not see
+@pytest.mark.parametrize("fix, message", [
+    ("fix push top addforce 1.0 0 0", r"cannot include the forces of fix push \(style addforce\)"),
+    ("fix push top setforce 1.0 NULL NULL", r"fix push \(style setforce\) sets force component x"),
+])
+def test_relax_local_refuses_forces_it_cannot_hold(tmp_path, fix, message):
+    deck = QS_BLOCK.format(relax=" relax local").replace("fix             hold ends setforce 0 0 0",
+                                                         "fix             hold ends setforce 0 0 0\n" + fix)
+    result = run_deck(deck, tmp_path)
+    assert result.returncode != 0
+    assert re.search(message, result.output), result.output[-1500:]
 
 
 # three particles in a row, bonds 1-2 and 2-3 of Ks = 0 and Xb = X0

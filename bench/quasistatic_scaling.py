@@ -1,0 +1,104 @@
+"""What one break costs in the quasi-static loop, against the size of the box.
+
+Runs the layer-extension scene (the seed's first scene) at several sizes, quasi-statically,
+for the first strain steps that break bonds, once with FIRE over the whole box (the default
+``--relax fire``) and once with ``lattice/quasistatic relax local``, each at its default
+tolerance, and prints per run: particles, breaks, relaxations, minimiser iterations or
+sweeps, particle moves (relax local) or particle force evaluations (FIRE: iterations x
+particles), those per break, the wall time and the wall time per break; then the growth of
+the cost per break with the box (the exponent of particles between successive sizes) and
+whether the two relaxations broke the same bonds in the same order (their breaks.txt).
+
+    python bench/quasistatic_scaling.py                       # n 60, 120; ~5 minutes on 1 core
+    python bench/quasistatic_scaling.py --n 60 120 240 --fire-up-to 120
+
+The runs go into --out (default bench-qs-scaling/); --reuse keeps finished runs.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import re
+from pathlib import Path
+
+from bonded_lattice.scene_study import SceneStudy
+from bonded_lattice.scenes import Scene
+
+SUMMARY = re.compile(r"lattice/quasistatic: (\d+) bonds broke .*? in (\d+) relaxations \((\d+) "
+                     r"(minimiser iterations|sweeps, (\d+) particle moves)\)")
+
+
+def costs(log: Path, particles: int) -> dict:
+    """Breaks, relaxations, iterations or sweeps and particle updates of a run's
+    lattice/quasistatic calls, summed over the strain steps (from log.lammps)."""
+    out = {"breaks": 0, "relaxations": 0, "iterations": 0, "updates": 0}
+    for m in SUMMARY.finditer(log.read_text()):
+        out["breaks"] += int(m.group(1))
+        out["relaxations"] += int(m.group(2))
+        out["iterations"] += int(m.group(3))
+        # FIRE evaluates every particle's force in each iteration
+        out["updates"] += int(m.group(5)) if m.group(5) else int(m.group(3)) * particles
+    return out
+
+
+def break_order(run_dir: Path) -> list[tuple[str, str]]:
+    """The broken bonds in the order they broke (breaks.txt: step, id1, id2, mode, ratio)."""
+    path = run_dir / "breaks.txt"
+    return [tuple(line.split()[1:3]) for line in path.read_text().splitlines()] \
+        if path.exists() else []
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--n", type=int, nargs="+", default=[60, 120],
+                    help="particles per row (square boxes; default 60 120)")
+    ap.add_argument("--steps", type=int, default=3,
+                    help="strain steps of 2e-5 (default 3: the layer's first avalanche)")
+    ap.add_argument("--fire-up-to", type=int, default=120,
+                    help="also run FIRE for n up to this (default 120)")
+    ap.add_argument("--out", default="bench-qs-scaling")
+    ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--reuse", action="store_true")
+    args = ap.parse_args()
+
+    rows = []
+    for n in args.n:
+        for relax in ("fire", "local"):
+            if relax == "fire" and n > args.fire_up_to:
+                continue
+            scene = Scene("layer-extension", n_x=n, n_steps=args.steps, relax=relax)
+            out = Path(args.out) / f"n{n}_{relax}"
+            summary = SceneStudy(scene, out, np_=args.np, pictures=False).run(reuse=args.reuse)
+            c = costs(out / "log.lammps", scene.n)
+            rows.append({"n": n, "particles": scene.n, "relax": relax, **c,
+                         "wall": summary["wall_time_s"], "order": break_order(out)})
+
+    print(f"layer-extension, {args.steps} strain steps of 2e-5, {args.np} rank(s)\n")
+    print("| particles | relax | breaks | relaxations | iterations or sweeps | particle updates "
+          "| updates per break | wall time (s) | wall time per break (s) |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        per = r["updates"] / max(1, r["breaks"])
+        print(f"| {r['particles']:,} | {r['relax']} | {r['breaks']} | {r['relaxations']} | "
+              f"{r['iterations']:,} | {r['updates']:.3g} | {per:.3g} | {r['wall']:.1f} | "
+              f"{r['wall'] / max(1, r['breaks']):.3g} |")
+    print()
+    for relax in ("fire", "local"):
+        mine = [r for r in rows if r["relax"] == relax and r["breaks"]]
+        for a, b in zip(mine, mine[1:]):
+            pa, pb = (r["updates"] / r["breaks"] for r in (a, b))
+            k = math.log(pb / pa) / math.log(b["particles"] / a["particles"])
+            print(f"{relax}: updates per break grow as particles^{k:.2f} from {a['particles']:,} "
+                  f"to {b['particles']:,}")
+    for n in args.n:
+        pair = {r["relax"]: r["order"] for r in rows if r["n"] == n}
+        if "fire" in pair and "local" in pair:
+            a, b = pair["fire"], pair["local"]
+            same = next((k for k, (x, y) in enumerate(zip(a, b)) if x != y), min(len(a), len(b)))
+            print(f"n {n}: FIRE broke {len(a)}, relax local {len(b)}; the first {same} breaks "
+                  "are the same bonds in the same order")
+
+
+if __name__ == "__main__":
+    main()
