@@ -24,9 +24,10 @@ from dataclasses import dataclass
 import numpy as np
 
 # above this many broken bonds a scene picture is drawn as a raster (bench/crack_pictures.py,
-# docs/scenes.md "Pictures": above 1e4 the segments' PNG is 2.5-4 times the raster's and
-# from about 4e4 they also take longer; the raster keeps cracks 3 d apart separate at the
-# seed's high resolution, where 2-pixel segment strokes merge them)
+# docs/scenes.md "Pictures": from 1e4 on the segments' PNG is 2.5-4 times the raster's, at
+# 2e5 they also take 1.8 times its CPU time; the raster keeps cracks 3 d apart separate at
+# the seed's high resolution, where 2-pixel segment strokes merge them; below 1e4 the
+# segments are the faster, at most 0.5 s)
 SEGMENT_LIMIT = 10000
 
 METHODS = ("auto", "segments", "raster")
@@ -146,24 +147,33 @@ def first_value_raster(segments: np.ndarray, values: np.ndarray, grid: PixelGrid
     return image.reshape(grid.ny, grid.nx)
 
 
-def particle_tree(positions: np.ndarray):
-    """A k-d tree of the particle centres (x, y), for :func:`nearest_particle_raster`."""
-    from scipy.spatial import cKDTree
-
-    return cKDTree(np.asarray(positions, dtype=float)[:, :2])
-
-
-def nearest_particle_raster(positions: np.ndarray, grid: PixelGrid, reach: float,
-                            tree=None) -> np.ndarray:
+def nearest_particle_raster(positions: np.ndarray, grid: PixelGrid, reach: float) -> np.ndarray:
     """(ny, nx) index of the particle nearest each pixel centre; -1 where none lies within
-    ``reach`` (outside the lattice).  tree: :func:`particle_tree` of the positions, if
-    already built."""
+    ``reach`` (outside the lattice).  Equally near particles: the lower index.
+
+    Each particle visits the pixels of the square of half-side ``reach`` around it, so the
+    work is the number of particles times (2 reach / pixel + 1)^2: about 2.6 times the pixels
+    the lattice covers when reach is 0.75 diameters.
+    """
     if not reach > 0:
         raise ValueError(f"reach = {reach} is out of range: need > 0")
-    x, y = grid.centres()
-    dist, idx = (tree or particle_tree(positions)).query(
-        np.column_stack([x.ravel(), y.ravel()]), distance_upper_bound=reach)
-    return np.where(np.isfinite(dist), idx, -1).reshape(grid.ny, grid.nx)
+    p = np.asarray(positions, dtype=float)[:, :2]
+    rx, ry = int(math.ceil(reach / grid.px)), int(math.ceil(reach / grid.py))
+    ox, oy = np.meshgrid(np.arange(-rx, rx + 1), np.arange(-ry, ry + 1))
+    cx = np.floor((p[:, 0] - grid.x0) / grid.px).astype(np.int64)[:, None] + ox.ravel()
+    cy = np.floor((p[:, 1] - grid.y0) / grid.py).astype(np.int64)[:, None] + oy.ravel()
+    dist = np.hypot(grid.x0 + (cx + 0.5) * grid.px - p[:, 0, None],
+                    grid.y0 + (cy + 0.5) * grid.py - p[:, 1, None])
+    keep = (dist < reach) & (cx >= 0) & (cx < grid.nx) & (cy >= 0) & (cy < grid.ny)
+    owner = np.broadcast_to(np.arange(len(p))[:, None], keep.shape)[keep]
+    flat, dist = (cy * grid.nx + cx)[keep], dist[keep]
+    order = np.lexsort((owner, dist, flat))          # per pixel: nearest, then lowest index
+    flat, owner = flat[order], owner[order]
+    first = np.ones(len(flat), dtype=bool)
+    first[1:] = flat[1:] != flat[:-1]
+    image = np.full(grid.nx * grid.ny, -1, dtype=np.int64)
+    image[flat[first]] = owner[first]
+    return image.reshape(grid.ny, grid.nx)
 
 
 def boundary_mask(labels: np.ndarray) -> np.ndarray:
@@ -267,10 +277,9 @@ def draw_scene_raster(fig, ax, positions: np.ndarray, grain: np.ndarray, segment
         ax.plot([], [], "-", color="tab:red", label=f"shear ({int(shear.sum())})")
         ax.legend(loc="upper right", fontsize=7)
     images = None
-    tree = particle_tree(positions)
     grid = axes_grid(fig, ax, dpi)
     for _ in range(3):
-        nearest = nearest_particle_raster(positions, grid, reach, tree=tree)
+        nearest = nearest_particle_raster(positions, grid, reach)
         back = background_rgba(grain, nearest, highlight)
         if steps is not None:
             first = first_value_raster(segments, steps, grid)
