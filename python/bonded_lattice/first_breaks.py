@@ -154,8 +154,9 @@ def first_breaks_png(path: str | Path, sites: Sequence[BreakSites], title: str =
 
     from .plotting import pyplot
 
-    if not sites:
-        raise ValueError("no runs to draw: need at least one BreakSites")
+    if not sites or not any(len(s.steps) for s in sites):
+        raise ValueError(f"{len(sites)} runs with no breaks to draw: need at least one "
+                         "BreakSites with breaks")
     plt = pyplot()
     fig, axes = plt.subplots(1, len(sites), figsize=(4.2 * len(sites) + 0.8, 4.6),
                              squeeze=False)

@@ -45,6 +45,15 @@ def test_crack_segment_is_across_the_bond_at_its_midpoint() -> None:
         crack_segments(positions, np.array([0]), np.array([1]), 0.0)
 
 
+def test_a_bond_lights_the_pixels_of_its_crack() -> None:
+    # bond (2.5, 3)-(4.5, 3): its crack segment, x = 3.5, y from 2.5 to 3.5, lies in rows 2
+    # and 3 of column 3 (the ends on pixel edges: floor puts 2.5 in row 2, 3.5 in row 3)
+    seg = crack_segments(np.array([[2.5, 3.0], [4.5, 3.0]]), np.array([0]), np.array([1]), 1.0)
+    counts = count_raster(seg, GRID)
+    assert np.nonzero(counts)[0].tolist() == [2, 3] and np.nonzero(counts)[1].tolist() == [3, 3]
+    assert counts.sum() == 2
+
+
 def test_vertical_segment_lights_its_column() -> None:
     # x = 3.5, y from 1.2 to 4.6: rows 1, 2, 3, 4 of column 3, once each
     counts = count_raster(np.array([[[3.5, 1.2], [3.5, 4.6]]]), GRID)

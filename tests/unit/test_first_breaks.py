@@ -16,6 +16,7 @@ from bonded_lattice.first_breaks import (
     break_order,
     break_sites,
     first_breaks,
+    first_breaks_png,
     outline,
     wall_share,
 )
@@ -89,3 +90,7 @@ def test_break_sites_from_dumps(tmp_path: Path) -> None:
     assert break_sites(tmp_path, pos, d=0.5, k=3).steps.tolist() == [1, 1, 2]
     with pytest.raises(ValueError, match="no bond dumps"):
         break_sites(tmp_path / "none", pos, d=0.5)
+    first_breaks_png(tmp_path / "first.png", [sites, sites])
+    assert (tmp_path / "first.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with pytest.raises(ValueError, match="0 runs with no breaks"):
+        first_breaks_png(tmp_path / "none.png", [])
