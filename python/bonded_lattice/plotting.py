@@ -183,19 +183,27 @@ def energy_png(path: str | Path, thermo: dict, title: str = "") -> None:
 def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
                     records: np.ndarray, d: float, broken_at: dict | None = None,
                     step_label: str = "strain step", title: str = "",
-                    highlight: np.ndarray | None = None) -> int:
+                    highlight: np.ndarray | None = None, method: str = "auto") -> int:
     """Map of the broken bonds of a scene; returns their number.
 
     positions: (n, 2+) initial particle centres (ids 1..n); grain: their grain
     ids; records: rows (id1, id2, state, ...) of ``compute lattice/bond/local``
-    (all records of the final state).  Each broken bond is drawn as a crack
-    segment of length d across the bond at its midpoint: black for tension,
+    (all records of the final state).  Each broken bond is a crack segment of
+    length d across the bond at its midpoint
+    (:func:`bonded_lattice.crack_raster.crack_segments`): black for tension,
     red for shear, or coloured by the step at which it broke (``broken_at``:
-    {(id1, id2): step}).  Grain (or layer) boundaries are drawn faintly as the
-    midpoints of the bonds that join two grains; ``highlight`` marks particles
-    (e.g. the growing grains) in light blue.
+    {(id1, id2): step}).  method (:func:`bonded_lattice.crack_raster.choose_method`):
+    ``"segments"`` draws them as lines over the grain (or layer) boundaries,
+    drawn faintly as the midpoints of the bonds that join two grains;
+    ``"raster"`` accumulates them into a raster of the figure's resolution over
+    a faint raster of the grains (:func:`bonded_lattice.crack_raster.draw_scene_raster`),
+    legible at tens of thousands of breaks; ``"auto"`` (default) segments up to
+    :data:`bonded_lattice.crack_raster.SEGMENT_LIMIT` broken bonds, the raster
+    above.  ``highlight`` marks particles (e.g. the growing grains) in light blue.
     """
     from matplotlib.collections import LineCollection
+
+    from .crack_raster import choose_method, crack_segments, draw_scene_raster
 
     plt = _pyplot()
     p = np.asarray(positions, dtype=float)[:, :2] * 1e3
@@ -203,25 +211,34 @@ def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
     i = rec[:, 0].astype(np.int64) - 1
     j = rec[:, 1].astype(np.int64) - 1
     state = rec[:, 2].astype(int)
+    broken = (state == 1) | (state == 2)
+    method = choose_method(int(broken.sum()), method)
     fig, ax = plt.subplots(figsize=(6.4, 6.4 * (np.ptp(p[:, 1]) + 1) / (np.ptp(p[:, 0]) + 1) + 0.6))
+    ax.set_xlim(p[:, 0].min() - 1e3 * d, p[:, 0].max() + 1e3 * d)
+    ax.set_ylim(p[:, 1].min() - 1e3 * d, p[:, 1].max() + 1e3 * d)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.set_title(title, fontsize=9)
+    segments = crack_segments(p, i[broken], j[broken], d * 1e3)
+    steps = None
+    if broken_at:
+        steps = np.array([broken_at.get((int(a) + 1, int(b) + 1), np.nan)
+                          for a, b in zip(i[broken], j[broken])], dtype=float)
+        steps = np.nan_to_num(steps, nan=np.nanmax(steps) if np.isfinite(steps).any() else 0)
+    if method == "raster":
+        draw_scene_raster(fig, ax, p, grain, segments, state[broken] == 2, steps=steps,
+                          highlight=highlight, reach=0.75e3 * d, step_label=step_label)
+        save_png(fig, path)
+        return int(broken.sum())
     if highlight is not None and np.any(highlight):
         h = np.asarray(highlight, dtype=bool)
         ax.scatter(p[h, 0], p[h, 1], s=2, c="#9ecae1", lw=0, zorder=0)
     across = (grain[i] != grain[j]) & (state != 3)
     mid = 0.5 * (p[i] + p[j])
     ax.scatter(mid[across, 0], mid[across, 1], s=1.0, c="0.6", lw=0, zorder=1)
-    broken = (state == 1) | (state == 2)
-    u = p[j[broken]] - p[i[broken]]
-    u /= np.linalg.norm(u, axis=1, keepdims=True)
-    normal = np.stack([-u[:, 1], u[:, 0]], axis=1) * 0.5 * d * 1e3
-    m = mid[broken]
-    segments = np.stack([m - normal, m + normal], axis=1)
-    if broken_at:
-        steps = np.array([broken_at.get((int(a) + 1, int(b) + 1), np.nan)
-                          for a, b in zip(i[broken], j[broken])], dtype=float)
-        lc = LineCollection(segments, array=np.nan_to_num(steps, nan=np.nanmax(steps)
-                                                          if np.isfinite(steps).any() else 0),
-                            cmap="viridis", linewidths=1.2, zorder=2)
+    if steps is not None:
+        lc = LineCollection(segments, array=steps, cmap="viridis", linewidths=1.2, zorder=2)
         ax.add_collection(lc)
         fig.colorbar(lc, ax=ax, label=f"broken by {step_label}", shrink=0.8)
     else:
@@ -230,12 +247,6 @@ def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
         ax.plot([], [], "k-", label=f"tension ({int((state == 1).sum())})")
         ax.plot([], [], "-", color="tab:red", label=f"shear ({int((state == 2).sum())})")
         ax.legend(loc="upper right", fontsize=7)
-    ax.set_xlim(p[:, 0].min() - 1e3 * d, p[:, 0].max() + 1e3 * d)
-    ax.set_ylim(p[:, 1].min() - 1e3 * d, p[:, 1].max() + 1e3 * d)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x (mm)")
-    ax.set_ylabel("y (mm)")
-    ax.set_title(title, fontsize=9)
     save_png(fig, path)
     return int(broken.sum())
 
