@@ -3,7 +3,9 @@
 Reads the scene decks' bond dumps (:func:`bonded_lattice.io.read_bond_dump`): the broken
 bonds of a dump (:func:`broken_bonds`), the strain step of each break from the dumps
 written every few steps (:func:`break_steps`), the bonds' orientations in the initial
-lattice (:func:`bond_angles`) and their statistics (:func:`crack_normal_stats`).
+lattice (:func:`bond_angles`) and their statistics (:func:`crack_normal_stats`), and how
+many of the first breaks lie near the box's edges, the walls or where they would be in a
+periodic box (:func:`first_breaks_near_edges`).
 """
 
 from __future__ import annotations
@@ -64,3 +66,57 @@ def crack_normal_stats(angles: np.ndarray) -> dict[str, float]:
     horizontal = np.minimum(a, 180.0 - a) < 15.0
     return {"n": int(len(a)), "mean": float(mean), "resultant": float(abs(z)),
             "fraction_0": float(horizontal.mean()), "fraction_60": float((~horizontal).mean())}
+
+
+def edge_distance(pairs: np.ndarray, positions: np.ndarray,
+                  period: tuple[float, float] | None = None) -> np.ndarray:
+    """Distance of each bond (id1, id2) from the edges of the lattice: from its midpoint in
+    the initial lattice to the nearest of the outermost rows and columns of particle
+    centres (the wall rows; in a periodic box the rows on either side of the seam, where
+    the walls would be).  period: the box lengths (x, y) of a periodic box: a bond across
+    the seam has its midpoint between the two images, outside the rows: distance 0."""
+    pairs = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+    p = np.asarray(positions, dtype=float)[:, :2]
+    a, b = p[pairs[:, 0] - 1], p[pairs[:, 1] - 1]
+    sep = b - a
+    if period is not None:
+        length = np.asarray(period, dtype=float).reshape(2)
+        if not np.all(length > 0):
+            raise ValueError(f"period = {list(period)} is out of range: need two lengths > 0")
+        sep -= length * np.round(sep / length)
+    mid = a + 0.5 * sep
+    lo, hi = p.min(axis=0), p.max(axis=0)
+    dist = np.minimum(mid - lo, hi - mid).min(axis=1)
+    return np.maximum(dist, 0.0)
+
+
+def first_breaks_near_edges(run_dir: str | Path, positions: np.ndarray, bonds: np.ndarray,
+                            d: float, count: int = 100, strip: float = 3.0,
+                            period: tuple[float, float] | None = None) -> dict:
+    """Where the first breaks of a run lie: the share within ``strip`` d of the edges
+    (:func:`edge_distance`) of the first ``count`` broken bonds, against the share of all
+    the lattice's ``bonds`` (pairs of ids, every bond of the initial lattice) in that strip:
+    breaks spread uniformly over the bonds would give the latter.
+
+    The breaks are dated by the bond dumps (:func:`break_steps`; the order within a strain
+    step is not known), so the first ``count`` are all those of the first strain steps up
+    to the one at which the count reaches ``count`` (or all breaks if fewer): ``n`` of them,
+    the last at strain step ``step`` (breaks seen first in ``bonds.final.txt`` count as
+    the last ones, step -1 if one of them is among the first)."""
+    if count < 1:
+        raise ValueError(f"count = {count} is out of range: need count >= 1")
+    if not (strip > 0 and d > 0):
+        raise ValueError(f"strip = {strip}, d = {d} are out of range: need both > 0")
+    late = 1 << 62
+    dated = {key: (k if k >= 0 else late) for key, k in break_steps(run_dir).items()}
+    near_all = edge_distance(bonds, positions, period) <= strip * d
+    expected = float(near_all.mean()) if len(near_all) else float("nan")
+    if not dated:
+        return {"n": 0, "step": -1, "near": float("nan"), "expected": expected,
+                "strip_d": strip}
+    steps = np.array(sorted(dated.values()))
+    last = int(steps[min(count, len(steps)) - 1])
+    first = np.array([key for key, k in dated.items() if k <= last], dtype=np.int64)
+    near = edge_distance(first, positions, period) <= strip * d
+    return {"n": int(len(first)), "step": last if last != late else -1, "near": float(near.mean()),
+            "expected": expected, "strip_d": strip}

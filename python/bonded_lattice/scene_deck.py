@@ -68,7 +68,11 @@ TITLES = {
 def scene_title(scene: Scene) -> str:
     """The scene's title, with its deformation."""
     title = TITLES[scene.kind]
-    return title.replace("pure shear", "uniaxial strain") if scene.deformation == "uniaxial" else title
+    if scene.deformation == "uniaxial":
+        title = title.replace("pure shear", "uniaxial strain")
+    if scene.boundary == "periodic":
+        title = title.replace("walls held", "box held") + ", periodic box"
+    return title
 
 
 def deck_text(scene: Scene, model: SceneModel | None = None,
@@ -82,27 +86,16 @@ def deck_text(scene: Scene, model: SceneModel | None = None,
     # fix adapt changes radii during a run: only with a dynamic radius (sphere 1)
     style = "sphere 1" if scene.kind == "expanding" and not qs else scene.atom_style
     pair = PairStyle(b, d, scene.atom_style, scene.pair_options())
+    boundary = "p p p" if scene.boundary == "periodic" else "f f p"
     head = f"""# Mike/Elle scene: {scene_title(scene)}
 # {scene.n} particles ({scene.n_x} per row, {scene.rows} rows), {scene.mode} loading.
 # Written by bonded_lattice.scenes; run: lmp -in <this file> (or mpirun -np 2 lmp -in ...)
 # Central springs (the seed's): Kn {b.Kn:.6g} N/m, Ks 0, Xb {b.Xb:.6g} m, mu_p 0;
 # a broken spring only repels.  Breaking force Kn Xb = {fb:.6g} N.
 
-{opening(2, "f f p", style, data_file, pair)}variable        d equal {d!r}
+{opening(2, boundary, style, data_file, pair)}variable        d equal {d!r}
 
-{wall_rows()}
-# strains: the walls' distance against the initial one; stresses (tension
-# positive): the wall reactions over the length they hold.  sigma_yy: the top
-# row's 2 n_x - 1 bonds to the row below carry (n_x - 1/2) d of the lattice;
-# sigma_xx: n_y rows of sqrt3/2 d (the 2 n_y - 1 bonds across a column make
-# an edge error of order 1/(3 n_y), docs/scenes.md)
-variable        Lx0 equal $(xcm(right,x)-xcm(left,x))
-variable        Ly0 equal $(xcm(top,y)-xcm(bottom,y))
-variable        exx equal (xcm(right,x)-xcm(left,x))/v_Lx0-1
-variable        eyy equal (xcm(top,y)-xcm(bottom,y))/v_Ly0-1
-variable        sxx equal 0.5*(f_wleft[1]-f_wright[1])/(xcm(top,y)-xcm(bottom,y)+sqrt(3)/2*v_d)
-variable        syy equal 0.5*(f_wbottom[2]-f_wtop[2])/(xcm(right,x)-xcm(left,x)+0.5*v_d)
-{bond_counts()}{bond_records()}"""
+{_box_measures(scene)}{bond_counts()}{bond_records()}"""
     grow = ""
     if scene.kind == "expanding":
         ids = " ".join(str(g) for g in model.expanding)
@@ -118,6 +111,42 @@ variable        d0 equal {d!r}
     if qs:
         return head + _quasistatic(scene, fb)
     return head + _dynamic(scene)
+
+
+WALL_MEASURES = """# strains: the walls' distance against the initial one; stresses (tension
+# positive): the wall reactions over the length they hold.  sigma_yy: the top
+# row's 2 n_x - 1 bonds to the row below carry (n_x - 1/2) d of the lattice;
+# sigma_xx: n_y rows of sqrt3/2 d (the 2 n_y - 1 bonds across a column make
+# an edge error of order 1/(3 n_y), docs/scenes.md)
+variable        Lx0 equal $(xcm(right,x)-xcm(left,x))
+variable        Ly0 equal $(xcm(top,y)-xcm(bottom,y))
+variable        exx equal (xcm(right,x)-xcm(left,x))/v_Lx0-1
+variable        eyy equal (xcm(top,y)-xcm(bottom,y))/v_Ly0-1
+variable        sxx equal 0.5*(f_wleft[1]-f_wright[1])/(xcm(top,y)-xcm(bottom,y)+sqrt(3)/2*v_d)
+variable        syy equal 0.5*(f_wbottom[2]-f_wtop[2])/(xcm(right,x)-xcm(left,x)+0.5*v_d)
+"""
+
+PERIODIC_MEASURES = """# ---- a box periodic in x and y: no walls; the lattice fills the periodic cell ----
+# strains: the box lengths against the initial ones; stresses (tension positive):
+# minus the virial pressure tensor, sum of r f over the bonds over the box's area
+# lx ly (LAMMPS' 2D volume): the 2D stress per unit thickness, in the wall
+# reactions' units (N/m per m of thickness)
+compute         press all pressure NULL virial
+variable        Lx0 equal $(lx)
+variable        Ly0 equal $(ly)
+variable        exx equal lx/v_Lx0-1
+variable        eyy equal ly/v_Ly0-1
+variable        sxx equal -c_press[1]
+variable        syy equal -c_press[2]
+"""
+
+
+def _box_measures(scene: Scene) -> str:
+    """The boundary's groups and fixes and the strain and stress variables exx, eyy, sxx,
+    syy: the wall rows and their reactions, or the periodic box and its pressure tensor."""
+    if scene.boundary == "periodic":
+        return PERIODIC_MEASURES
+    return f"{wall_rows()}\n{WALL_MEASURES}"
 
 
 def _line_vars() -> str:

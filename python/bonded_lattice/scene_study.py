@@ -15,12 +15,13 @@ from pathlib import Path
 import numpy as np
 
 from .runner import RunResult
-from .scenes import (Scene, SceneModel, bond_angles, break_steps, broken_bonds, build_model,
-                     crack_normal_stats, read_bond_dump, read_scene_dat, scene_title,
+from .scenes import (Scene, SceneModel, bond_angles, box_lattice, box_period, break_steps,
+                     broken_bonds, build_model, crack_normal_stats, first_breaks_near_edges,
+                     lattice_bond_ids, read_bond_dump, read_scene_dat, scene_title,
                      write_scene)
 from .study import Study
 
-__all__ = ["SceneStudy", "picture_scene", "run_scene", "summarize"]
+__all__ = ["SceneStudy", "first_breaks_at_edges", "picture_scene", "run_scene", "summarize"]
 
 
 def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray) -> dict:
@@ -38,8 +39,9 @@ def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray) -> dict:
     else:
         load = dat["sxx"]
     k_peak = int(np.argmax(load))
-    return {
-        "kind": scene.kind, "mode": scene.mode, "particles": scene.n,
+    summary = {
+        "kind": scene.kind, "mode": scene.mode, "boundary": scene.boundary,
+        "particles": scene.n,
         "strain": float(dat["exx"][-1]) if scene.kind != "expanding" else float(dat["growth"][-1]),
         "broken": int(len(final)), "broken_tension": int((final[:, 2] == 1).sum()),
         "broken_shear": int((final[:, 2] == 2).sum()),
@@ -48,6 +50,21 @@ def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray) -> dict:
         "steps": int(dat["step"][-1]),
         "orientation": crack_normal_stats(angles),
     }
+    if scene.bond_dumps:
+        summary["first_breaks"] = first_breaks_at_edges(scene, run_dir, positions)
+    return summary
+
+
+def first_breaks_at_edges(scene: Scene, run_dir: str | Path, positions: np.ndarray,
+                          count: int = 100, strip: float = 3.0) -> dict:
+    """:func:`bonded_lattice.scenes.first_breaks_near_edges` of a finished run with bond
+    dumps: the share of the first ``count`` breaks within ``strip`` d of the walls (or of
+    where they would be: the periodic box's seam) against the strip's share of all bonds."""
+    periodic = scene.boundary == "periodic"
+    lattice = box_lattice(scene.n_x, scene.rows, scene.d, periodic)
+    period = box_period(lattice) if periodic else None
+    return first_breaks_near_edges(run_dir, positions, lattice_bond_ids(lattice, periodic),
+                                   scene.d, count=count, strip=strip, period=period)
 
 
 class SceneStudy(Study):

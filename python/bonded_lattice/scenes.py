@@ -50,20 +50,22 @@ of the first four importable from here.
 from __future__ import annotations
 
 from .io.dump import read_bond_dump
-from .scene_analysis import bond_angles, break_steps, broken_bonds, crack_normal_stats
+from .scene_analysis import (bond_angles, break_steps, broken_bonds, crack_normal_stats,
+                             edge_distance, first_breaks_near_edges)
 from .scene_deck import (ATOMIC_SAVING_PER_PARTICLE, BYTES_PER_PARTICLE, BYTES_PER_RANK,
                          DATA_FILE, SCENE_COLUMNS, TITLES, deck_text, expected_memory,
                          read_scene_dat, scene_title, write_scene)
-from .scene_definition import (DEFORMATIONS, KINDS, MODES, ROW, SQRT3, Scene,
+from .scene_definition import (BOUNDARIES, DEFORMATIONS, KINDS, MODES, ROW, SQRT3, Scene,
                                central_spring_bond, plane_moduli)
-from .scene_model import (SceneModel, box_lattice, build_model, expanding_grains, grain_model,
-                          wall_masks)
+from .scene_model import (SceneModel, box_lattice, box_period, build_model, expanding_grains,
+                          grain_box, grain_model, lattice_bond_ids, periodic_pairs, wall_masks)
 
-__all__ = ["ATOMIC_SAVING_PER_PARTICLE", "BYTES_PER_PARTICLE", "BYTES_PER_RANK", "DATA_FILE",
-           "DEFORMATIONS", "KINDS", "MODES", "ROW", "SCENE_COLUMNS", "SQRT3", "TITLES",
-           "Scene", "SceneModel", "bond_angles", "box_lattice", "break_steps", "broken_bonds",
-           "build_model", "central_spring_bond", "crack_normal_stats", "deck_text",
-           "expanding_grains", "expected_memory", "grain_model",
-           "plane_moduli", "read_bond_dump", "read_scene_dat", "scene_title", "wall_masks",
-           "write_scene"]
+__all__ = ["ATOMIC_SAVING_PER_PARTICLE", "BOUNDARIES", "BYTES_PER_PARTICLE", "BYTES_PER_RANK",
+           "DATA_FILE", "DEFORMATIONS", "KINDS", "MODES", "ROW", "SCENE_COLUMNS", "SQRT3",
+           "TITLES", "Scene", "SceneModel", "bond_angles", "box_lattice", "box_period",
+           "break_steps", "broken_bonds", "build_model", "central_spring_bond",
+           "crack_normal_stats", "deck_text", "edge_distance", "expanding_grains",
+           "expected_memory", "first_breaks_near_edges", "grain_box", "grain_model",
+           "lattice_bond_ids", "periodic_pairs", "plane_moduli", "read_bond_dump",
+           "read_scene_dat", "scene_title", "wall_masks", "write_scene"]
 
