@@ -183,7 +183,8 @@ def energy_png(path: str | Path, thermo: dict, title: str = "") -> None:
 def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
                     records: np.ndarray, d: float, broken_at: dict | None = None,
                     step_label: str = "strain step", title: str = "",
-                    highlight: np.ndarray | None = None) -> int:
+                    highlight: np.ndarray | None = None,
+                    period: tuple[float, float] | None = None) -> int:
     """Map of the broken bonds of a scene; returns their number.
 
     positions: (n, 2+) initial particle centres (ids 1..n); grain: their grain
@@ -193,7 +194,8 @@ def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
     red for shear, or coloured by the step at which it broke (``broken_at``:
     {(id1, id2): step}).  Grain (or layer) boundaries are drawn faintly as the
     midpoints of the bonds that join two grains; ``highlight`` marks particles
-    (e.g. the growing grains) in light blue.
+    (e.g. the growing grains) in light blue.  period: the (x, y) lengths of a periodic
+    box, whose bonds across the seam are drawn at their minimum-image midpoints.
     """
     from matplotlib.collections import LineCollection
 
@@ -208,10 +210,14 @@ def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
         h = np.asarray(highlight, dtype=bool)
         ax.scatter(p[h, 0], p[h, 1], s=2, c="#9ecae1", lw=0, zorder=0)
     across = (grain[i] != grain[j]) & (state != 3)
-    mid = 0.5 * (p[i] + p[j])
+    sep = p[j] - p[i]
+    if period is not None:
+        length = np.asarray(period, dtype=float) * 1e3
+        sep -= length * np.round(sep / length)
+    mid = p[i] + 0.5 * sep
     ax.scatter(mid[across, 0], mid[across, 1], s=1.0, c="0.6", lw=0, zorder=1)
     broken = (state == 1) | (state == 2)
-    u = p[j[broken]] - p[i[broken]]
+    u = sep[broken]
     u /= np.linalg.norm(u, axis=1, keepdims=True)
     normal = np.stack([-u[:, 1], u[:, 0]], axis=1) * 0.5 * d * 1e3
     m = mid[broken]

@@ -122,9 +122,10 @@ def picture_scene(scene: Scene, out: str | Path, model: SceneModel | None = None
     records = read_bond_dump(out / "bonds.final.txt")
     highlight = np.isin(model.grain, model.expanding) if model.expanding else None
     title = f"{scene_title(scene)}\n{scene.n} particles, {scene.mode}"
+    period = box_period(model.lattice) if scene.boundary == "periodic" else None
     scene_bonds_png(out / f"{prefix}broken_bonds.png", model.lattice.positions, model.grain,
                     records, scene.d, title=title + ": broken bonds by mode",
-                    highlight=highlight)
+                    highlight=highlight, period=period)
     dated = break_steps(out)
     if dated:
         per = 1 if scene.mode == "quasistatic" else scene.steps_per_strain_step()
@@ -132,7 +133,7 @@ def picture_scene(scene: Scene, out: str | Path, model: SceneModel | None = None
         scene_bonds_png(out / f"{prefix}broken_steps.png", model.lattice.positions,
                         model.grain, records, scene.d, broken_at=dated,
                         step_label="strain step", title=title + ": broken bonds by step",
-                        highlight=highlight)
+                        highlight=highlight, period=period)
     dat = read_scene_dat(out / "scene.dat")
     x = dat["growth"] if scene.kind == "expanding" else dat["exx"]
     label = "grain growth (1e-3)" if scene.kind == "expanding" else "strain e_xx (1e-3)"
