@@ -265,6 +265,8 @@ SCENE_NUMBERS = {
                          "(dynamic; default %(default)s)"),
         "bond_dumps": ("--bond-dumps", "dump the bond records every this many strain steps "
                        "(0: only at the end)"),
+        "break_order": ("--break-order", "quasi-static: dump the bond records after each of "
+                        "the first this many breaks (break.<n>.txt: their exact order)"),
     },
 }
 

@@ -188,13 +188,34 @@ variable        nsteps index {scene.n_steps}
 variable        k loop ${{nsteps}}
 label           strain
 {step}
-lattice/quasistatic ftol {scene.ftol * fb:.6g} break one maxsteps {scene.maxsteps}
-run             0 post no
+{_relax(scene, fb)}run             0 post no
 print           "{_line_vars()}" append scene.dat screen no
 {dumps}next            k
 jump            SELF strain
 
 write_dump      all local bonds.final.txt {BOND_RECORDS}
+"""
+
+
+def _relax(scene: Scene, fb: float) -> str:
+    """The relaxation and breaking of one quasi-static step (``lattice/quasistatic ... break
+    one``); with ``break_order``, first a loop of ``maxbreak 1`` calls (the same sequence:
+    relax, break the worst bond, relax, ...) that writes the bond records after each of the
+    first ``break_order`` breaks (``break.<n>.txt``).  No run between the calls: outside the
+    command the pair style would break every bond past its threshold at once."""
+    relax = (f"lattice/quasistatic ftol {scene.ftol * fb:.6g} break one maxsteps "
+             f"{scene.maxsteps}")
+    if not scene.break_order:
+        return relax + "\n"
+    n = scene.break_order
+    return f"""# the first {n} breaks one call each, the bond records after each (break.<n>.txt)
+label           brk
+variable        nb0 equal $(c_bonds[2]+c_bonds[3])
+{relax} maxbreak 1
+variable        nb1 equal $(c_bonds[2]+c_bonds[3])
+if "${{nb1}} > ${{nb0}} && ${{nb1}} <= {n}" then "write_dump all local break.${{nb1}}.txt {BOND_RECORDS}"
+if "${{nb1}} > ${{nb0}} && ${{nb1}} < {n}" then "jump SELF brk"
+{relax}
 """
 
 

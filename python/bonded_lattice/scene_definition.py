@@ -119,6 +119,9 @@ class Scene:
     damping: float = 1.0
     output_every: int = 1          # strain steps between scene.dat lines (dynamic: the equivalent)
     bond_dumps: int = 0            # >0: bonds.<step>.txt every this many strain steps
+    # >0 (quasi-static): break.<n>.txt after each of the first break_order breaks, n = 1, 2,
+    # ...: the exact order of the first breaks (within a strain step too)
+    break_order: int = 0
     maxsteps: int = 100000         # per relaxation (lattice/quasistatic maxsteps)
     # "atomic": per-type mass and pair_style lattice/bond diameter d (less memory); not
     # for expanding grains, whose particles need their own diameters
@@ -175,6 +178,11 @@ class Scene:
                 raise ValueError(f"{name} = {getattr(self, name)} is out of range: need >= 1")
         if self.bond_dumps < 0:
             raise ValueError(f"bond_dumps = {self.bond_dumps} is out of range: need >= 0")
+        if self.break_order < 0:
+            raise ValueError(f"break_order = {self.break_order} is out of range: need >= 0")
+        if self.break_order and self.mode != "quasistatic":
+            raise ValueError(f"break_order = {self.break_order} with mode = {self.mode!r}: "
+                             "the breaks are ordered by the quasi-static loop only")
         if self.kind == "expanding" and not 1 <= self.n_expanding < self.n_grains:
             raise ValueError(f"n_expanding = {self.n_expanding} is out of range: need "
                              f"1 <= n_expanding < n_grains = {self.n_grains}")

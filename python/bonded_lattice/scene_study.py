@@ -50,7 +50,7 @@ def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray) -> dict:
         "steps": int(dat["step"][-1]),
         "orientation": crack_normal_stats(angles),
     }
-    if scene.bond_dumps:
+    if scene.bond_dumps or scene.break_order:
         summary["first_breaks"] = first_breaks_at_edges(scene, run_dir, positions)
     return summary
 

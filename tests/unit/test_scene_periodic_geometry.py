@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 from bonded_lattice.scenes import (BOUNDARIES, ROW, Scene, box_lattice, box_period,
-                                   build_model, deck_text, edge_distance,
+                                   break_sequence, build_model, deck_text, edge_distance,
                                    first_breaks_near_edges, grain_box, lattice_bond_ids,
                                    periodic_pairs)
 from bonded_lattice.grains import voronoi_seeds
@@ -133,7 +133,7 @@ def test_first_breaks_near_edges_of_a_constructed_run(tmp_path):
     _dump(tmp_path / "bonds.2.txt", [(*seam, 1), (*inner, 1), (*seam2, 0)])
     _dump(tmp_path / "bonds.3.txt", [(*seam, 1), (*inner, 1), (*seam2, 1)])
     two = first_breaks_near_edges(tmp_path, lat.positions, bonds, D, count=2, period=period)
-    assert (two["n"], two["step"], two["near"]) == (2, 2, 0.5)
+    assert (two["order"], two["n"], two["step"], two["near"]) == ("step", 2, 2, 0.5)
     one = first_breaks_near_edges(tmp_path, lat.positions, bonds, D, count=1, period=period)
     assert (one["n"], one["step"], one["near"]) == (1, 1, 1.0)
     p = lat.positions[:, :2]
@@ -147,3 +147,36 @@ def test_first_breaks_near_edges_of_a_constructed_run(tmp_path):
     assert two["expected"] == pytest.approx(near / len(bonds), rel=1e-12)
     with pytest.raises(ValueError, match="count = 0"):
         first_breaks_near_edges(tmp_path, lat.positions, bonds, D, count=0)
+
+
+def test_break_sequence_and_exact_first_breaks(tmp_path):
+    """Dumps after each break (break.<n>.txt, as a deck with break_order writes them): the
+    sequence is the bond each dump adds; first_breaks_near_edges then takes the first
+    ``count`` exactly: here the inner bond (3.46 d) first, then two seam bonds (0 d)."""
+    lat = box_lattice(10, 10, D, periodic=True)
+    period = box_period(lat)
+    bonds = lattice_bond_ids(lat, periodic=True)
+    inner, seam, seam2 = (45, 46), (1, 10), (11, 20)
+    _dump(tmp_path / "break.1.txt", [(*inner, 1), (*seam, 0), (*seam2, 0)])
+    _dump(tmp_path / "break.2.txt", [(*inner, 1), (*seam, 1), (*seam2, 0)])
+    _dump(tmp_path / "break.3.txt", [(*inner, 1), (*seam, 1), (*seam2, 1)])
+    assert break_sequence(tmp_path).tolist() == [list(inner), list(seam), list(seam2)]
+    two = first_breaks_near_edges(tmp_path, lat.positions, bonds, D, count=2, period=period)
+    assert (two["order"], two["n"], two["near"]) == ("break", 2, 0.5)
+    assert two["first_d"] == pytest.approx(2 * math.sqrt(3), rel=1e-12)
+    # a dump that adds two broken bonds at once is not a dump per break
+    _dump(tmp_path / "break.1.txt", [(*inner, 1), (*seam, 1), (*seam2, 0)])
+    with pytest.raises(ValueError, match="2 new broken bonds"):
+        break_sequence(tmp_path)
+
+
+def test_break_order_option():
+    """break_order writes the maxbreak-1 loop into the quasi-static deck; negative values
+    and dynamic loading are refused."""
+    deck = deck_text(Scene("polycrystal", n_x=12, n_grains=4, break_order=50))
+    assert "maxbreak 1" in deck and "write_dump all local break.${nb1}.txt" in deck
+    assert "maxbreak" not in deck_text(Scene("polycrystal", n_x=12, n_grains=4))
+    with pytest.raises(ValueError, match="break_order = -1 is out of range"):
+        Scene("polycrystal", break_order=-1)
+    with pytest.raises(ValueError, match="break_order = 5 with mode = 'dynamic'"):
+        Scene("polycrystal", break_order=5, mode="dynamic")
