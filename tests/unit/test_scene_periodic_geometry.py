@@ -119,19 +119,25 @@ def _dump(path, rows):
     path.write_text("\n".join(lines) + "\n")
 
 
+SEAM, INNER, SEAM2 = (1, 10), (45, 46), (11, 20)   # bonds of the 10 x 10 periodic lattice
+
+
+def _breaking(folder, prefix: str, order: list) -> tuple:
+    """Dumps ``<prefix>.1.txt`` ... of a 10 x 10 periodic lattice in which the bonds of
+    ``order`` break one per dump; returns the lattice, its period and its bond ids."""
+    for k in range(1, len(order) + 1):
+        _dump(folder / f"{prefix}.{k}.txt", [(*b, int(n < k)) for n, b in enumerate(order)])
+    lat = box_lattice(10, 10, D, periodic=True)
+    return lat, box_period(lat), lattice_bond_ids(lat, periodic=True)
+
+
 def test_first_breaks_near_edges_of_a_constructed_run(tmp_path):
     """Three strain steps' dumps of a 10 x 10 periodic lattice: step 1 breaks the seam
     bond (1, 10) (distance 0), step 2 the inner bond (45, 46) (2 sqrt3 d = 3.46 d, outside a
     3 d strip), step 3 one more seam bond.  The first 2 breaks: steps 1-2, half of them
     within 3 d; the first 1: step 1 only, all of them.  The expected share is the strip's
     share of all 300 bonds, counted here by brute force."""
-    lat = box_lattice(10, 10, D, periodic=True)
-    period = box_period(lat)
-    bonds = lattice_bond_ids(lat, periodic=True)
-    seam, inner, seam2 = (1, 10), (45, 46), (11, 20)
-    _dump(tmp_path / "bonds.1.txt", [(*seam, 1), (*inner, 0), (*seam2, 0)])
-    _dump(tmp_path / "bonds.2.txt", [(*seam, 1), (*inner, 1), (*seam2, 0)])
-    _dump(tmp_path / "bonds.3.txt", [(*seam, 1), (*inner, 1), (*seam2, 1)])
+    lat, period, bonds = _breaking(tmp_path, "bonds", [SEAM, INNER, SEAM2])
     two = first_breaks_near_edges(tmp_path, lat.positions, bonds, D, count=2, period=period)
     assert (two["order"], two["n"], two["step"], two["near"]) == ("step", 2, 2, 0.5)
     one = first_breaks_near_edges(tmp_path, lat.positions, bonds, D, count=1, period=period)
@@ -153,19 +159,13 @@ def test_break_sequence_and_exact_first_breaks(tmp_path):
     """Dumps after each break (break.<n>.txt, as a deck with break_order writes them): the
     sequence is the bond each dump adds; first_breaks_near_edges then takes the first
     ``count`` exactly: here the inner bond (3.46 d) first, then two seam bonds (0 d)."""
-    lat = box_lattice(10, 10, D, periodic=True)
-    period = box_period(lat)
-    bonds = lattice_bond_ids(lat, periodic=True)
-    inner, seam, seam2 = (45, 46), (1, 10), (11, 20)
-    _dump(tmp_path / "break.1.txt", [(*inner, 1), (*seam, 0), (*seam2, 0)])
-    _dump(tmp_path / "break.2.txt", [(*inner, 1), (*seam, 1), (*seam2, 0)])
-    _dump(tmp_path / "break.3.txt", [(*inner, 1), (*seam, 1), (*seam2, 1)])
-    assert break_sequence(tmp_path).tolist() == [list(inner), list(seam), list(seam2)]
+    lat, period, bonds = _breaking(tmp_path, "break", [INNER, SEAM, SEAM2])
+    assert break_sequence(tmp_path).tolist() == [list(INNER), list(SEAM), list(SEAM2)]
     two = first_breaks_near_edges(tmp_path, lat.positions, bonds, D, count=2, period=period)
     assert (two["order"], two["n"], two["near"]) == ("break", 2, 0.5)
     assert two["first_d"] == pytest.approx(2 * math.sqrt(3), rel=1e-12)
     # a dump that adds two broken bonds at once is not a dump per break
-    _dump(tmp_path / "break.1.txt", [(*inner, 1), (*seam, 1), (*seam2, 0)])
+    _dump(tmp_path / "break.1.txt", [(*INNER, 1), (*SEAM, 1), (*SEAM2, 0)])
     with pytest.raises(ValueError, match="2 new broken bonds"):
         break_sequence(tmp_path)
 
