@@ -2,7 +2,8 @@
 
 The deck is made of the shared sections of :mod:`bonded_lattice.deck` (opening with the
 grains' pair style, the wall rows of the deformation box, integrator, bond counts and
-records, thermo) around the scene's own measurements and loading: the quasi-static loop
+records, thermo) around the scene's own measurements (the walls' reactions, or the virial
+pressure tensor of a periodic box) and loading: the quasi-static loop
 (a strain or diameter step, then ``lattice/quasistatic``) or the dynamic run (affine
 velocities, ``fix adapt`` for growing grains).  Every deck writes ``scene.dat``
 (:data:`SCENE_COLUMNS`, read by :func:`read_scene_dat`) and the bond dumps
