@@ -177,8 +177,9 @@ def _scene(args: argparse.Namespace):
                  n_expanding=args.expanding, mode=args.mode, strain_step=args.strain_step,
                  n_steps=args.steps, ftol=args.ftol, relax=args.relax, crossings=args.crossings,
                  damping=args.damping, output_every=args.output_every,
-                 bond_dumps=args.bond_dumps, dt_fraction=args.dt_fraction,
-                 deformation=args.deformation,
+                 bond_dumps=args.bond_dumps, break_order=args.break_order,
+                 dt_fraction=args.dt_fraction,
+                 deformation=args.deformation, boundary=args.boundary,
                  atom_style=args.atom_style or ("sphere" if args.kind == "expanding" else "atomic"))
 
 

@@ -29,7 +29,7 @@ from .decks import ELASTIC_LOADS, GRIPS, SHEAR_FRAMES, TESTS
 from .experiment import END_CHOICES, plan_test, run_test
 from .grains import GrainModel, GrainPairOptions
 from .lattice import ATOM_STYLES
-from .scenes import DEFORMATIONS, KINDS, MODES, RELAXATIONS, Scene
+from .scenes import BOUNDARIES, DEFORMATIONS, KINDS, MODES, RELAXATIONS, Scene
 from .schedules import DEFAULT_CROSSINGS_BY_TEST, DEFAULT_LOADING, SCHEDULE_ALIASES, SCHEDULES
 
 __all__ = ["OPTIONS", "TEST_DEFAULTS", "add", "heterogeneity_options", "plan_options",
@@ -266,6 +266,8 @@ SCENE_NUMBERS = {
                          "(dynamic; default %(default)s)"),
         "bond_dumps": ("--bond-dumps", "dump the bond records every this many strain steps "
                        "(0: only at the end)"),
+        "break_order": ("--break-order", "quasi-static: dump the bond records after each of "
+                        "the first this many breaks (break.<n>.txt: their exact order)"),
     },
 }
 
@@ -281,6 +283,9 @@ def scene_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--deformation", choices=DEFORMATIONS, default=s["deformation"],
                    help="pure shear (default: the other axis keeps the area) or uniaxial (the "
                    "walls across the other axis held)")
+    p.add_argument("--boundary", choices=BOUNDARIES, default=s["boundary"],
+                   help="walls (default: a row of wall particles on each side) or periodic "
+                   "(a box periodic in x and y, no walls; quasi-static only)")
     add(p, "n", s["n_x"], help="particles per row (default %(default)s)")
     add(p, "d", s["d"])
     add(p, "rock", TEST_DEFAULTS["rock"], help="rock whose E and Tu give Kn and Xb "

@@ -90,17 +90,22 @@ class PixelGrid:
 
 
 def crack_segments(positions: np.ndarray, i: np.ndarray, j: np.ndarray,
-                   length: float) -> np.ndarray:
+                   length: float, period: np.ndarray | None = None) -> np.ndarray:
     """(m, 2, 2) crack segments: of ``length`` (the diameter d), across each bond (i, j)
-    (0-based particle indices) at its midpoint, normal to it."""
+    (0-based particle indices) at its midpoint, normal to it; with ``period`` (the (x, y)
+    lengths of a periodic box) a bond across the seam is taken at its minimum image, its
+    midpoint beside particle i."""
     if not length > 0:
         raise ValueError(f"crack segment length = {length} is out of range: need > 0")
     p = np.asarray(positions, dtype=float)[:, :2]
     i, j = np.asarray(i, dtype=np.int64), np.asarray(j, dtype=np.int64)
-    u = p[j] - p[i]
-    u /= np.linalg.norm(u, axis=1, keepdims=True)
+    sep = p[j] - p[i]
+    if period is not None:
+        box = np.asarray(period, dtype=float)
+        sep -= box * np.round(sep / box)
+    u = sep / np.linalg.norm(sep, axis=1, keepdims=True)
     normal = np.stack([-u[:, 1], u[:, 0]], axis=1) * 0.5 * length
-    mid = 0.5 * (p[i] + p[j])
+    mid = p[i] + 0.5 * sep
     return np.stack([mid - normal, mid + normal], axis=1)
 
 

@@ -183,7 +183,8 @@ def energy_png(path: str | Path, thermo: dict, title: str = "") -> None:
 def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
                     records: np.ndarray, d: float, broken_at: dict | None = None,
                     step_label: str = "strain step", title: str = "",
-                    highlight: np.ndarray | None = None, method: str = "auto") -> int:
+                    highlight: np.ndarray | None = None, method: str = "auto",
+                    period: tuple[float, float] | None = None) -> int:
     """Map of the broken bonds of a scene; returns their number.
 
     positions: (n, 2+) initial particle centres (ids 1..n); grain: their grain
@@ -200,6 +201,8 @@ def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
     legible at tens of thousands of breaks; ``"auto"`` (default) segments up to
     :data:`bonded_lattice.crack_raster.SEGMENT_LIMIT` broken bonds, the raster
     above.  ``highlight`` marks particles (e.g. the growing grains) in light blue.
+    period: the (x, y) lengths of a periodic box, whose bonds across the seam are
+    drawn at their minimum-image midpoints.
     """
     from matplotlib.collections import LineCollection
 
@@ -220,7 +223,12 @@ def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     ax.set_title(title, fontsize=9)
-    segments = crack_segments(p, i[broken], j[broken], d * 1e3)
+    length = None if period is None else np.asarray(period, dtype=float) * 1e3
+    sep = p[j] - p[i]
+    if length is not None:
+        sep -= length * np.round(sep / length)
+    mid = p[i] + 0.5 * sep
+    segments = crack_segments(p, i[broken], j[broken], d * 1e3, length)
     steps = None
     if broken_at:
         steps = np.array([broken_at.get((int(a) + 1, int(b) + 1), np.nan)
@@ -235,7 +243,6 @@ def scene_bonds_png(path: str | Path, positions: np.ndarray, grain: np.ndarray,
         h = np.asarray(highlight, dtype=bool)
         ax.scatter(p[h, 0], p[h, 1], s=2, c="#9ecae1", lw=0, zorder=0)
     across = (grain[i] != grain[j]) & (state != 3)
-    mid = 0.5 * (p[i] + p[j])
     ax.scatter(mid[across, 0], mid[across, 1], s=1.0, c="0.6", lw=0, zorder=1)
     if steps is not None:
         lc = LineCollection(segments, array=steps, cmap="viridis", linewidths=1.2, zorder=2)

@@ -2,8 +2,11 @@
 
 Reads the scene decks' bond dumps (:func:`bonded_lattice.io.read_bond_dump`): the broken
 bonds of a dump (:func:`broken_bonds`), the strain step of each break from the dumps
-written every few steps (:func:`break_steps`), the bonds' orientations in the initial
-lattice (:func:`bond_angles`) and their statistics (:func:`crack_normal_stats`).
+written every few steps (:func:`break_steps`) or their exact order from the dumps after
+each of the first breaks (:func:`break_sequence`), the bonds' orientations in the initial
+lattice (:func:`bond_angles`) and their statistics (:func:`crack_normal_stats`), and how
+many of the first breaks lie near the box's edges, the walls or where they would be in a
+periodic box (:func:`first_breaks_near_edges`).
 """
 
 from __future__ import annotations
@@ -38,6 +41,26 @@ def break_steps(run_dir: str | Path) -> dict[tuple[int, int], int]:
     return found
 
 
+def break_sequence(run_dir: str | Path) -> np.ndarray:
+    """(id1, id2) of the first breaks in their exact order, from the dumps ``break.<n>.txt``
+    that a quasi-static deck with ``break_order`` writes after its n-th break (each holds
+    one broken bond more than the one before)."""
+    run_dir = Path(run_dir)
+    seen: set[tuple[int, int]] = set()
+    order: list[tuple[int, int]] = []
+    n = 1
+    while (run_dir / f"break.{n}.txt").exists():
+        broken = broken_bonds(run_dir / f"break.{n}.txt")[:, :2].astype(np.int64)
+        new = [pair for pair in map(tuple, broken.tolist()) if pair not in seen]
+        if len(new) != 1:
+            raise ValueError(f"{run_dir / f'break.{n}.txt'}: {len(new)} new broken bonds, "
+                             "need exactly 1 (a dump per break)")
+        seen.add(new[0])
+        order.append(new[0])
+        n += 1
+    return np.array(order, dtype=np.int64).reshape(-1, 2)
+
+
 def bond_angles(pairs: np.ndarray, positions: np.ndarray) -> np.ndarray:
     """Orientation (degrees, 0-180 from the x axis) of bonds (id1, id2) in the initial lattice."""
     pairs = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
@@ -64,3 +87,66 @@ def crack_normal_stats(angles: np.ndarray) -> dict[str, float]:
     horizontal = np.minimum(a, 180.0 - a) < 15.0
     return {"n": int(len(a)), "mean": float(mean), "resultant": float(abs(z)),
             "fraction_0": float(horizontal.mean()), "fraction_60": float((~horizontal).mean())}
+
+
+def edge_distance(pairs: np.ndarray, positions: np.ndarray,
+                  period: tuple[float, float] | None = None) -> np.ndarray:
+    """Distance of each bond (id1, id2) from the edges of the lattice: from its midpoint in
+    the initial lattice to the nearest of the outermost rows and columns of particle
+    centres (the wall rows; in a periodic box the rows on either side of the seam, where
+    the walls would be).  period: the box lengths (x, y) of a periodic box: a bond across
+    the seam has its midpoint between the two images, outside the rows: distance 0."""
+    pairs = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+    p = np.asarray(positions, dtype=float)[:, :2]
+    a, b = p[pairs[:, 0] - 1], p[pairs[:, 1] - 1]
+    sep = b - a
+    if period is not None:
+        length = np.asarray(period, dtype=float).reshape(2)
+        if not np.all(length > 0):
+            raise ValueError(f"period = {list(period)} is out of range: need two lengths > 0")
+        sep -= length * np.round(sep / length)
+    mid = a + 0.5 * sep
+    lo, hi = p.min(axis=0), p.max(axis=0)
+    dist = np.minimum(mid - lo, hi - mid).min(axis=1)
+    return np.maximum(dist, 0.0)
+
+
+def first_breaks_near_edges(run_dir: str | Path, positions: np.ndarray, bonds: np.ndarray,
+                            d: float, count: int = 100, strip: float = 3.0,
+                            period: tuple[float, float] | None = None) -> dict:
+    """Where the first breaks of a run lie: the share within ``strip`` d of the edges
+    (:func:`edge_distance`) of the first ``count`` broken bonds, against the share of all
+    the lattice's ``bonds`` (pairs of ids, every bond of the initial lattice) in that strip:
+    breaks spread uniformly over the bonds would give the latter.
+
+    With the dumps of each break (:func:`break_sequence`, ``order`` "break") the first
+    ``count`` are exact (``n`` = count, or all of them if fewer were dumped), and
+    ``first_d`` is the first break's distance from the edges in d.  Otherwise (``order``
+    "step") they are dated by the bond dumps (:func:`break_steps`; the order within a
+    strain step is not known), so the first ``count`` are all those of the first strain
+    steps up to the one at which the count reaches ``count`` (or all breaks if fewer):
+    ``n`` of them, the last at strain step ``step`` (breaks seen first in
+    ``bonds.final.txt`` count as the last ones, step -1 if one of them is among the
+    first)."""
+    if count < 1:
+        raise ValueError(f"count = {count} is out of range: need count >= 1")
+    if not (strip > 0 and d > 0):
+        raise ValueError(f"strip = {strip}, d = {d} are out of range: need both > 0")
+    near_all = edge_distance(bonds, positions, period) <= strip * d
+    expected = float(near_all.mean()) if len(near_all) else float("nan")
+    sequence = break_sequence(run_dir)[:count]
+    if len(sequence):
+        dist = edge_distance(sequence, positions, period)
+        return {"order": "break", "n": int(len(sequence)), "near": float((dist <= strip * d).mean()),
+                "expected": expected, "strip_d": strip, "first_d": float(dist[0] / d)}
+    late = 1 << 62
+    dated = {key: (k if k >= 0 else late) for key, k in break_steps(run_dir).items()}
+    if not dated:
+        return {"order": "step", "n": 0, "step": -1, "near": float("nan"),
+                "expected": expected, "strip_d": strip}
+    steps = np.array(sorted(dated.values()))
+    last = int(steps[min(count, len(steps)) - 1])
+    first = np.array([key for key, k in dated.items() if k <= last], dtype=np.int64)
+    near = edge_distance(first, positions, period) <= strip * d
+    return {"order": "step", "n": int(len(first)), "step": last if last != late else -1,
+            "near": float(near.mean()), "expected": expected, "strip_d": strip}

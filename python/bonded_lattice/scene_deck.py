@@ -2,7 +2,8 @@
 
 The deck is made of the shared sections of :mod:`bonded_lattice.deck` (opening with the
 grains' pair style, the wall rows of the deformation box, integrator, bond counts and
-records, thermo) around the scene's own measurements and loading: the quasi-static loop
+records, thermo) around the scene's own measurements (the walls' reactions, or the virial
+pressure tensor of a periodic box) and loading: the quasi-static loop
 (a strain or diameter step, then ``lattice/quasistatic``) or the dynamic run (affine
 velocities, ``fix adapt`` for growing grains).  Every deck writes ``scene.dat``
 (:data:`SCENE_COLUMNS`, read by :func:`read_scene_dat`) and the bond dumps
@@ -68,7 +69,11 @@ TITLES = {
 def scene_title(scene: Scene) -> str:
     """The scene's title, with its deformation."""
     title = TITLES[scene.kind]
-    return title.replace("pure shear", "uniaxial strain") if scene.deformation == "uniaxial" else title
+    if scene.deformation == "uniaxial":
+        title = title.replace("pure shear", "uniaxial strain")
+    if scene.boundary == "periodic":
+        title = title.replace("walls held", "box held") + ", periodic box"
+    return title
 
 
 def deck_text(scene: Scene, model: SceneModel | None = None,
@@ -82,27 +87,16 @@ def deck_text(scene: Scene, model: SceneModel | None = None,
     # fix adapt changes radii during a run: only with a dynamic radius (sphere 1)
     style = "sphere 1" if scene.kind == "expanding" and not qs else scene.atom_style
     pair = PairStyle(b, d, scene.atom_style, scene.pair_options())
+    boundary = "p p p" if scene.boundary == "periodic" else "f f p"
     head = f"""# Mike/Elle scene: {scene_title(scene)}
 # {scene.n} particles ({scene.n_x} per row, {scene.rows} rows), {scene.mode} loading.
 # Written by bonded_lattice.scenes; run: lmp -in <this file> (or mpirun -np 2 lmp -in ...)
 # Central springs (the seed's): Kn {b.Kn:.6g} N/m, Ks 0, Xb {b.Xb:.6g} m, mu_p 0;
 # a broken spring only repels.  Breaking force Kn Xb = {fb:.6g} N.
 
-{opening(2, "f f p", style, data_file, pair)}variable        d equal {d!r}
+{opening(2, boundary, style, data_file, pair)}variable        d equal {d!r}
 
-{wall_rows()}
-# strains: the walls' distance against the initial one; stresses (tension
-# positive): the wall reactions over the length they hold.  sigma_yy: the top
-# row's 2 n_x - 1 bonds to the row below carry (n_x - 1/2) d of the lattice;
-# sigma_xx: n_y rows of sqrt3/2 d (the 2 n_y - 1 bonds across a column make
-# an edge error of order 1/(3 n_y), docs/scenes.md)
-variable        Lx0 equal $(xcm(right,x)-xcm(left,x))
-variable        Ly0 equal $(xcm(top,y)-xcm(bottom,y))
-variable        exx equal (xcm(right,x)-xcm(left,x))/v_Lx0-1
-variable        eyy equal (xcm(top,y)-xcm(bottom,y))/v_Ly0-1
-variable        sxx equal 0.5*(f_wleft[1]-f_wright[1])/(xcm(top,y)-xcm(bottom,y)+sqrt(3)/2*v_d)
-variable        syy equal 0.5*(f_wbottom[2]-f_wtop[2])/(xcm(right,x)-xcm(left,x)+0.5*v_d)
-{bond_counts()}{bond_records()}"""
+{_box_measures(scene)}{bond_counts()}{bond_records()}"""
     grow = ""
     if scene.kind == "expanding":
         ids = " ".join(str(g) for g in model.expanding)
@@ -118,6 +112,42 @@ variable        d0 equal {d!r}
     if qs:
         return head + _quasistatic(scene, fb)
     return head + _dynamic(scene)
+
+
+WALL_MEASURES = """# strains: the walls' distance against the initial one; stresses (tension
+# positive): the wall reactions over the length they hold.  sigma_yy: the top
+# row's 2 n_x - 1 bonds to the row below carry (n_x - 1/2) d of the lattice;
+# sigma_xx: n_y rows of sqrt3/2 d (the 2 n_y - 1 bonds across a column make
+# an edge error of order 1/(3 n_y), docs/scenes.md)
+variable        Lx0 equal $(xcm(right,x)-xcm(left,x))
+variable        Ly0 equal $(xcm(top,y)-xcm(bottom,y))
+variable        exx equal (xcm(right,x)-xcm(left,x))/v_Lx0-1
+variable        eyy equal (xcm(top,y)-xcm(bottom,y))/v_Ly0-1
+variable        sxx equal 0.5*(f_wleft[1]-f_wright[1])/(xcm(top,y)-xcm(bottom,y)+sqrt(3)/2*v_d)
+variable        syy equal 0.5*(f_wbottom[2]-f_wtop[2])/(xcm(right,x)-xcm(left,x)+0.5*v_d)
+"""
+
+PERIODIC_MEASURES = """# ---- a box periodic in x and y: no walls; the lattice fills the periodic cell ----
+# strains: the box lengths against the initial ones; stresses (tension positive):
+# minus the virial pressure tensor, sum of r f over the bonds over the box's area
+# lx ly (LAMMPS' 2D volume): the 2D stress per unit thickness, in the wall
+# reactions' units (N/m per m of thickness)
+compute         press all pressure NULL virial
+variable        Lx0 equal $(lx)
+variable        Ly0 equal $(ly)
+variable        exx equal lx/v_Lx0-1
+variable        eyy equal ly/v_Ly0-1
+variable        sxx equal -c_press[1]
+variable        syy equal -c_press[2]
+"""
+
+
+def _box_measures(scene: Scene) -> str:
+    """The boundary's groups and fixes and the strain and stress variables exx, eyy, sxx,
+    syy: the wall rows and their reactions, or the periodic box and its pressure tensor."""
+    if scene.boundary == "periodic":
+        return PERIODIC_MEASURES
+    return f"{wall_rows()}\n{WALL_MEASURES}"
 
 
 def _line_vars() -> str:
@@ -144,9 +174,9 @@ def _quasistatic(scene: Scene, fb: float) -> str:
                  f"\"write_dump all local bonds.${{k}}.txt {BOND_RECORDS}\"\n")
     if scene.relax == "local":
         how = "over-relaxation where the forces exceed the tolerance, relax local"
-        minimizer, relax = "", "relax local quiet yes "
+        minimizer = ""
     else:
-        how, minimizer, relax = "FIRE", "min_style       fire\n", ""
+        how, minimizer = "FIRE", "min_style       fire\n"
     return f"""
 # ---- quasi-static loading (the seed's loop): {scene.n_steps} steps ----
 # {what};
@@ -164,13 +194,35 @@ variable        nsteps index {scene.n_steps}
 variable        k loop ${{nsteps}}
 label           strain
 {step}
-lattice/quasistatic ftol {scene.relax_tolerance * fb:.6g} {relax}break one maxsteps {scene.maxsteps} breaks breaks.txt
-run             0 post no
+{_relax(scene, fb)}run             0 post no
 print           "{_line_vars()}" append scene.dat screen no
 {dumps}next            k
 jump            SELF strain
 
 write_dump      all local bonds.final.txt {BOND_RECORDS}
+"""
+
+
+def _relax(scene: Scene, fb: float) -> str:
+    """The relaxation and breaking of one quasi-static step (``lattice/quasistatic ... break
+    one``); with ``break_order``, first a loop of ``maxbreak 1`` calls (the same sequence:
+    relax, break the worst bond, relax, ...) that writes the bond records after each of the
+    first ``break_order`` breaks (``break.<n>.txt``).  No run between the calls: outside the
+    command the pair style would break every bond past its threshold at once."""
+    how = "relax local quiet yes " if scene.relax == "local" else ""
+    relax = (f"lattice/quasistatic ftol {scene.relax_tolerance * fb:.6g} {how}break one "
+             f"maxsteps {scene.maxsteps} breaks breaks.txt")
+    if not scene.break_order:
+        return relax + "\n"
+    n = scene.break_order
+    return f"""# the first {n} breaks one call each, the bond records after each (break.<n>.txt)
+label           brk
+variable        nb0 equal $(c_bonds[2]+c_bonds[3])
+{relax} maxbreak 1
+variable        nb1 equal $(c_bonds[2]+c_bonds[3])
+if "${{nb1}} > ${{nb0}} && ${{nb1}} <= {n}" then "write_dump all local break.${{nb1}}.txt {BOND_RECORDS}"
+if "${{nb1}} > ${{nb0}} && ${{nb1}} < {n}" then "jump SELF brk"
+{relax}
 """
 
 

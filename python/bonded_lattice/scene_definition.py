@@ -29,6 +29,9 @@ RELAXATIONS = ("fire", "local")
 # the same largest force, and needs a ten times smaller one for FIRE's sequence of breaks
 # (docs/lattice_quasistatic.rst, "Accuracy")
 DEFAULT_FTOL = {"fire": 1.0e-3, "local": 1.0e-4}
+# what bounds the lattice: a row of wall particles on each side held by fix setforce
+# (the deformation box), or a box periodic in x and y (no walls, no edges)
+BOUNDARIES = ("walls", "periodic")
 SQRT3 = math.sqrt(3.0)
 ROW = 0.5 * SQRT3            # row spacing of the hexagonal lattice, in units of d
 
@@ -79,8 +82,14 @@ class Scene:
     grains, 1 for the layer: :attr:`boundary_factor`); n_expanding grains
     (those nearest the centre, preferably touching no wall) grow.
 
+    Boundary: "walls" (the deformation box: a row of wall particles on each
+    side, held perpendicular to it, stresses from the walls' reactions) or
+    "periodic" (a box periodic in x and y that the lattice fills exactly,
+    width n_x d and height n_y sqrt3/2 d, n_y even; no walls; stresses from
+    LAMMPS' virial pressure tensor; quasi-static only).
+
     Loading: deformation "pure-shear" (y scaled by the inverse of x) or
-    "uniaxial" (y walls held; not for expanding grains, whose walls are held
+    "uniaxial" (y walls held, or the periodic box's height kept; not for expanding grains, whose walls are held
     anyway); quasistatic: n_steps steps of strain_step (engineering strain of
     the box along x; for expanding grains the relative diameter increase of
     the growing grains per step), each relaxed to ftol x Kn Xb (the force
@@ -117,11 +126,15 @@ class Scene:
     damping: float = 1.0
     output_every: int = 1          # strain steps between scene.dat lines (dynamic: the equivalent)
     bond_dumps: int = 0            # >0: bonds.<step>.txt every this many strain steps
+    # >0 (quasi-static): break.<n>.txt after each of the first break_order breaks, n = 1, 2,
+    # ...: the exact order of the first breaks (within a strain step too)
+    break_order: int = 0
     maxsteps: int = 100000         # per relaxation (lattice/quasistatic maxsteps)
     relax: str = "fire"            # quasistatic: RELAXATIONS
     # "atomic": per-type mass and pair_style lattice/bond diameter d (less memory); not
     # for expanding grains, whose particles need their own diameters
     atom_style: str = "sphere"
+    boundary: str = "walls"        # BOUNDARIES: wall rows or a periodic box
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
@@ -134,6 +147,13 @@ class Scene:
         if self.kind == "expanding" and self.deformation != "pure-shear":
             raise ValueError(f"deformation = {self.deformation!r}: growing grains load a box "
                              "whose walls are held; the deformation does not apply")
+        if self.boundary not in BOUNDARIES:
+            raise ValueError(f"boundary = {self.boundary!r} is not known: use one of "
+                             f"{', '.join(BOUNDARIES)}")
+        if self.boundary == "periodic" and self.mode != "quasistatic":
+            raise ValueError(f"boundary = 'periodic' with mode = {self.mode!r}: the periodic "
+                             "box is deformed by the quasi-static steps only; use mode "
+                             "quasistatic (or boundary walls)")
         check_atom_style(self.atom_style)
         if self.kind == "expanding" and self.atom_style != "sphere":
             raise ValueError(f"atom_style = {self.atom_style!r}: growing grains change their "
@@ -142,6 +162,10 @@ class Scene:
             raise ValueError(f"n_x = {self.n_x} is out of range: need n_x >= 4")
         if self.n_y != 0 and self.n_y < 4:
             raise ValueError(f"n_y = {self.n_y} is out of range: need 0 (square) or n_y >= 4")
+        if self.boundary == "periodic" and self.n_y % 2:
+            raise ValueError(f"n_y = {self.n_y} is out of range for boundary = 'periodic': need "
+                             "an even number of rows (the rows alternate their d/2 shift, so "
+                             "only an even count repeats across the periodic seam)")
         if self.bond.Ks != 0.0 or self.bond.mu_p != 0.0:
             raise ValueError(f"Ks = {self.bond.Ks}, mu_p = {self.bond.mu_p}: the scenes are the "
                              "seed's central springs, need Ks = 0 and mu_p = 0")
@@ -165,6 +189,11 @@ class Scene:
                 raise ValueError(f"{name} = {getattr(self, name)} is out of range: need >= 1")
         if self.bond_dumps < 0:
             raise ValueError(f"bond_dumps = {self.bond_dumps} is out of range: need >= 0")
+        if self.break_order < 0:
+            raise ValueError(f"break_order = {self.break_order} is out of range: need >= 0")
+        if self.break_order and self.mode != "quasistatic":
+            raise ValueError(f"break_order = {self.break_order} with mode = {self.mode!r}: "
+                             "the breaks are ordered by the quasi-static loop only")
         if self.kind == "expanding" and not 1 <= self.n_expanding < self.n_grains:
             raise ValueError(f"n_expanding = {self.n_expanding} is out of range: need "
                              f"1 <= n_expanding < n_grains = {self.n_grains}")
@@ -197,12 +226,14 @@ class Scene:
 
     @property
     def width(self) -> float:
-        """Effective width n_x d: the wall rows' centre distance + d (carries sigma_yy)."""
+        """Width n_x d: walls: the wall rows' centre distance + d (carries sigma_yy);
+        periodic: the box's period along x."""
         return self.n_x * self.d
 
     @property
     def height(self) -> float:
-        """Effective height rows x sqrt3/2 d (carries sigma_xx)."""
+        """Height rows x sqrt3/2 d: walls: the effective height (carries sigma_xx);
+        periodic: the box's period along y."""
         return self.rows * ROW * self.d
 
     @property

@@ -16,12 +16,14 @@ import numpy as np
 
 from .fractures import intergranular_fraction, layer_fractures, radial_fractures
 from .runner import RunResult
-from .scenes import (Scene, SceneModel, bond_angles, break_steps, broken_bonds, build_model,
-                     crack_normal_stats, read_bond_dump, read_scene_dat, scene_title,
+from .scenes import (Scene, SceneModel, bond_angles, box_lattice, box_period, break_steps,
+                     broken_bonds, build_model, crack_normal_stats, first_breaks_near_edges,
+                     lattice_bond_ids, read_bond_dump, read_scene_dat, scene_title,
                      write_scene)
 from .study import Study
 
-__all__ = ["SceneStudy", "fracture_summary", "picture_scene", "run_scene", "summarize"]
+__all__ = ["SceneStudy", "first_breaks_at_edges", "fracture_summary", "picture_scene", "run_scene",
+           "summarize"]
 
 
 def fracture_summary(scene: Scene, model: SceneModel, pairs: np.ndarray) -> dict:
@@ -60,7 +62,8 @@ def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray,
         load = dat["sxx"]
     k_peak = int(np.argmax(load))
     summary = {
-        "kind": scene.kind, "mode": scene.mode, "particles": scene.n,
+        "kind": scene.kind, "mode": scene.mode, "boundary": scene.boundary,
+        "particles": scene.n,
         "strain": float(dat["exx"][-1]) if scene.kind != "expanding" else float(dat["growth"][-1]),
         "broken": int(len(final)), "broken_tension": int((final[:, 2] == 1).sum()),
         "broken_shear": int((final[:, 2] == 2).sum()),
@@ -69,8 +72,22 @@ def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray,
         "steps": int(dat["step"][-1]),
         "orientation": crack_normal_stats(angles),
     }
+    if scene.bond_dumps or scene.break_order:
+        summary["first_breaks"] = first_breaks_at_edges(scene, run_dir, positions)
     summary.update(fracture_summary(scene, model or build_model(scene), final[:, :2]))
     return summary
+
+
+def first_breaks_at_edges(scene: Scene, run_dir: str | Path, positions: np.ndarray,
+                          count: int = 100, strip: float = 3.0) -> dict:
+    """:func:`bonded_lattice.scenes.first_breaks_near_edges` of a finished run with bond
+    dumps: the share of the first ``count`` breaks within ``strip`` d of the walls (or of
+    where they would be: the periodic box's seam) against the strip's share of all bonds."""
+    periodic = scene.boundary == "periodic"
+    lattice = box_lattice(scene.n_x, scene.rows, scene.d, periodic)
+    period = box_period(lattice) if periodic else None
+    return first_breaks_near_edges(run_dir, positions, lattice_bond_ids(lattice, periodic),
+                                   scene.d, count=count, strip=strip, period=period)
 
 
 class SceneStudy(Study):
@@ -129,9 +146,10 @@ def picture_scene(scene: Scene, out: str | Path, model: SceneModel | None = None
     records = read_bond_dump(out / "bonds.final.txt")
     highlight = np.isin(model.grain, model.expanding) if model.expanding else None
     title = f"{scene_title(scene)}\n{scene.n} particles, {scene.mode}"
+    period = box_period(model.lattice) if scene.boundary == "periodic" else None
     scene_bonds_png(out / f"{prefix}broken_bonds.png", model.lattice.positions, model.grain,
                     records, scene.d, title=title + ": broken bonds by mode",
-                    highlight=highlight)
+                    highlight=highlight, period=period)
     dated = break_steps(out)
     if dated:
         per = 1 if scene.mode == "quasistatic" else scene.steps_per_strain_step()
@@ -139,7 +157,7 @@ def picture_scene(scene: Scene, out: str | Path, model: SceneModel | None = None
         scene_bonds_png(out / f"{prefix}broken_steps.png", model.lattice.positions,
                         model.grain, records, scene.d, broken_at=dated,
                         step_label="strain step", title=title + ": broken bonds by step",
-                        highlight=highlight)
+                        highlight=highlight, period=period)
     dat = read_scene_dat(out / "scene.dat")
     x = dat["growth"] if scene.kind == "expanding" else dat["exx"]
     label = "grain growth (1e-3)" if scene.kind == "expanding" else "strain e_xx (1e-3)"

@@ -35,7 +35,13 @@ iterations), the wall strains, the wall stresses and the bond counts; and
 ``bonds.final.txt``, a ``dump local`` of ``compute lattice/bond/local id1
 id2 state x y z``.  With ``bond_dumps`` > 0 it also writes that dump every
 few strain steps (``bonds.<step>.txt``), from which :func:`break_steps`
-dates each broken bond.
+dates each broken bond; with ``break_order`` > 0 (quasi-static) it also writes it after each
+of the first breaks (``break.<n>.txt``), from which :func:`break_sequence` gives their exact
+order.
+
+With ``boundary="periodic"`` the box is periodic in x and y instead, with no walls: the
+lattice fills its periodic cell, the strain steps are the same ``change_box ... remap``, and
+the stresses are minus the virial pressure tensor (``compute pressure NULL virial``).
 
 The scenes are made in layers, one module each: the definition
 (:mod:`bonded_lattice.scene_definition`: :class:`Scene`, :func:`central_spring_bond`), the
@@ -50,20 +56,22 @@ of the first four importable from here.
 from __future__ import annotations
 
 from .io.dump import read_bond_dump
-from .scene_analysis import bond_angles, break_steps, broken_bonds, crack_normal_stats
+from .scene_analysis import (bond_angles, break_sequence, break_steps, broken_bonds,
+                             crack_normal_stats, edge_distance, first_breaks_near_edges)
 from .scene_deck import (ATOMIC_SAVING_PER_PARTICLE, BYTES_PER_PARTICLE, BYTES_PER_RANK,
                          DATA_FILE, SCENE_COLUMNS, TITLES, deck_text, expected_memory,
                          read_scene_dat, scene_title, write_scene)
-from .scene_definition import (DEFAULT_FTOL, DEFORMATIONS, KINDS, MODES, RELAXATIONS, ROW,
-                               SQRT3, Scene, central_spring_bond, plane_moduli)
-from .scene_model import (SceneModel, box_lattice, build_model, expanding_grains, grain_model,
-                          wall_masks)
+from .scene_definition import (BOUNDARIES, DEFAULT_FTOL, DEFORMATIONS, KINDS, MODES, RELAXATIONS,
+                               ROW, SQRT3, Scene, central_spring_bond, plane_moduli)
+from .scene_model import (SceneModel, box_lattice, box_period, build_model, expanding_grains,
+                          grain_box, grain_model, lattice_bond_ids, periodic_pairs, wall_masks)
 
-__all__ = ["ATOMIC_SAVING_PER_PARTICLE", "BYTES_PER_PARTICLE", "BYTES_PER_RANK", "DATA_FILE",
-           "DEFAULT_FTOL", "DEFORMATIONS", "KINDS", "MODES", "RELAXATIONS", "ROW", "SCENE_COLUMNS", "SQRT3", "TITLES",
-           "Scene", "SceneModel", "bond_angles", "box_lattice", "break_steps", "broken_bonds",
-           "build_model", "central_spring_bond", "crack_normal_stats", "deck_text",
-           "expanding_grains", "expected_memory", "grain_model",
-           "plane_moduli", "read_bond_dump", "read_scene_dat", "scene_title", "wall_masks",
-           "write_scene"]
+__all__ = ["ATOMIC_SAVING_PER_PARTICLE", "BOUNDARIES", "BYTES_PER_PARTICLE", "BYTES_PER_RANK",
+           "DATA_FILE", "DEFAULT_FTOL", "DEFORMATIONS", "KINDS", "MODES", "RELAXATIONS", "ROW",
+           "SCENE_COLUMNS", "SQRT3", "TITLES", "Scene", "SceneModel", "bond_angles", "box_lattice",
+           "box_period", "break_sequence", "break_steps", "broken_bonds", "build_model",
+           "central_spring_bond", "crack_normal_stats", "deck_text", "edge_distance",
+           "expanding_grains", "expected_memory", "first_breaks_near_edges", "grain_box",
+           "grain_model", "lattice_bond_ids", "periodic_pairs", "plane_moduli", "read_bond_dump",
+           "read_scene_dat", "scene_title", "wall_masks", "write_scene"]
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Sequence
 
 import numpy as np
 
@@ -103,14 +104,17 @@ class GrainModel:
                                  "need 0 < layer_contrast < inf")
 
 
-def grain_arrays(positions: np.ndarray, d: float,
-                 model: GrainModel) -> tuple[np.ndarray, np.ndarray]:
+def grain_arrays(positions: np.ndarray, d: float, model: GrainModel,
+                 box: tuple[Sequence[float], Sequence[float]] | None = None
+                 ) -> tuple[np.ndarray, np.ndarray]:
     """Grain id and stiffness factor of every particle of a block, for the data file.
 
     positions: (n, 2 or 3) particle centres; d: particle diameter.  The
-    block's rectangle is the particles' outer extent (centres +- d/2): the
-    Voronoi points fill it, the Elle unit cell is mapped onto it, the layer
-    is centred in it.
+    block's rectangle is the particles' outer extent (centres +- d/2), or
+    ``box`` = (lo, hi) in x and y if given (a periodic box: its cell, so
+    that periodic Voronoi grains repeat with the box): the Voronoi points
+    fill it, the Elle unit cell is mapped onto it, the layer is centred on
+    the particles.
     """
     p = check_points(positions, 2)
     if not (d > 0 and math.isfinite(d)):
@@ -118,7 +122,13 @@ def grain_arrays(positions: np.ndarray, d: float,
     if len(p) == 0:
         raise ValueError("no particles")
     full = np.asarray(positions, dtype=float)
-    lo, hi = p.min(axis=0) - 0.5 * d, p.max(axis=0) + 0.5 * d
+    if box is None:
+        lo, hi = p.min(axis=0) - 0.5 * d, p.max(axis=0) + 0.5 * d
+    else:
+        lo, hi = (np.asarray(b, dtype=float).reshape(-1)[:2] for b in box)
+        if not np.all(hi > lo) or not np.all(np.isfinite(lo) & np.isfinite(hi)):
+            raise ValueError(f"box = ({lo.tolist()}, {hi.tolist()}) is out of range: need "
+                             "finite lo < hi in x and y")
     extra = np.ones(len(p))
     if model.source == "voronoi":
         grain = voronoi_grains(p, lo, hi, model.n_grains, model.seed, model.periodic)
