@@ -2,12 +2,13 @@
 
 A run's bond dumps (``--bond-dumps K``: ``bonds.<k>.txt`` every K strain steps) date each
 break by the first dump that shows it broken (:func:`bonded_lattice.scene_analysis.break_steps`).
-The order of the breaks *within* one strain step is not recorded: ``lattice/quasistatic``
-breaks them one at a time, the most over-stressed first, but writes only their number.
-So the breaks are ordered by step alone (:func:`break_order`, ties in a step kept together
-and listed by bond id only to be deterministic), and "the first K breaks" are all the breaks
-of the strain steps up to the one in which the count reaches K (:func:`first_breaks`: K or
-more; a step that breaks many bonds at once, an avalanche, takes them all).
+The quasi-static decks also log every break in order (``breaks.txt``,
+:func:`bonded_lattice.scene_analysis.break_sequence`); :func:`break_sites` takes the first
+K from that log when the run has one.  Without it the breaks are ordered by step alone
+(:func:`break_order`, ties in a step kept together and listed by bond id only to be
+deterministic), and "the first K breaks" are all the breaks of the strain steps up to the
+one in which the count reaches K (:func:`first_breaks`: K or more; a step that breaks many
+bonds at once, an avalanche, takes them all).
 
 "Where" in one number (:func:`wall_share`): the share of those breaks whose bond midpoint
 lies closer than ``band`` to the box outline (the rectangle of the outermost particle
@@ -28,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from .io.dump import read_bond_dump
-from .scene_analysis import break_steps
+from .scene_analysis import break_sequence, break_steps
 
 Box = tuple[float, float, float, float]   # x0, x1, y0, y1
 
@@ -135,6 +136,10 @@ def break_sites(run_dir: str | Path, positions: np.ndarray, d: float, k: int = 1
     p = np.asarray(positions, dtype=float)[:, :2]
     box = box or outline(p)
     pairs, steps = first_breaks(dated, k)
+    exact = break_sequence(run_dir)[:k]
+    if len(exact) == min(k, len(dated)):    # the log of the breaks in order
+        pairs = exact
+        steps = np.array([dated.get((int(a), int(b)), -1) for a, b in exact], dtype=np.int64)
     points = 0.5 * (p[pairs[:, 0] - 1] + p[pairs[:, 1] - 1])
     rows = read_bond_dump(run_dir / "bonds.final.txt")
     bonds = rows[rows[:, 2] != 3][:, :2].astype(np.int64)   # state 3: a contact, never a bond

@@ -41,11 +41,26 @@ def break_steps(run_dir: str | Path) -> dict[tuple[int, int], int]:
     return found
 
 
-def break_sequence(run_dir: str | Path) -> np.ndarray:
-    """(id1, id2) of the first breaks in their exact order, from the dumps ``break.<n>.txt``
-    that a quasi-static deck with ``break_order`` writes after its n-th break (each holds
-    one broken bond more than the one before)."""
+SEQUENCE_SOURCES = ("auto", "log", "dumps")
+
+
+def break_sequence(run_dir: str | Path, source: str = "auto") -> np.ndarray:
+    """(id1, id2) of the breaks in their exact order: from ``breaks.txt`` (source "log"),
+    where the quasi-static decks' ``lattice/quasistatic ... breaks breaks.txt`` appends every
+    break (time step, id1, id2, mode, ratio), or from the dumps ``break.<n>.txt`` (source
+    "dumps") that a quasi-static deck with ``break_order`` writes after its n-th break (each
+    holds one broken bond more than the one before); "auto": the log if the run has one.
+    Empty if the run has neither."""
+    if source not in SEQUENCE_SOURCES:
+        raise ValueError(f"source = {source!r} is not known: use one of "
+                         f"{', '.join(SEQUENCE_SOURCES)}")
     run_dir = Path(run_dir)
+    log = run_dir / "breaks.txt"
+    if source == "log" or (source == "auto" and log.exists()):
+        if not log.exists():
+            return np.zeros((0, 2), dtype=np.int64)
+        rows = [line.split()[1:3] for line in log.read_text().splitlines() if line.strip()]
+        return np.array(rows, dtype=np.int64).reshape(-1, 2)
     seen: set[tuple[int, int]] = set()
     order: list[tuple[int, int]] = []
     n = 1
