@@ -362,22 +362,28 @@ void LatticeLocalRelax::build_colours()
    pushes)
 ------------------------------------------------------------------------- */
 
-double LatticeLocalRelax::spring_force(const Spring &s, double *f, BreakMode &mode) const
+void LatticeLocalRelax::force_only(const Spring &s, double *f) const
 {
-  mode = BreakMode::None;
   const PairSeparation d = pair_separation(atom->x, s.i, s.j);
   const double r = d.length();
   const double xn = normal_stretch(r, s.touch);
   if (!s.intact && contact_open(xn)) {
     f[0] = f[1] = f[2] = 0.0;
-    return -1.0;
+    return;
   }
-  const double fn = normal_force(s.kn, xn);
-  const double scale = -fn / r;
+  const double scale = -normal_force(s.kn, xn) / r;
   f[0] = scale * d.dx;
   f[1] = scale * d.dy;
   f[2] = scale * d.dz;
+}
+
+double LatticeLocalRelax::spring_force(const Spring &s, double *f, BreakMode &mode) const
+{
+  mode = BreakMode::None;
+  force_only(s, f);
   if (!s.intact) return -1.0;
+  const double xn = normal_stretch(pair_separation(atom->x, s.i, s.j).length(), s.touch);
+  const double fn = normal_force(s.kn, xn);
   // PairLatticeBond::bond_load with no shear spring (fs = 0)
   const double tension = tensile_ratio(xn, s.xb);
   const double shear = shear_ratio(0.0, s.mu_p, fn, s.fs0);
@@ -389,8 +395,7 @@ void LatticeLocalRelax::recompute(int k)
 {
   Spring &s = springs[k];
   double f[3];
-  BreakMode m;
-  ratio[k] = spring_force(s, f, m);
+  force_only(s, f);    // its ratio: when worst() brings the tournament up to date
   const double df[3] = {f[0] - s.f[0], f[1] - s.f[1], f[2] - s.f[2]};
   for (int c = 0; c < 3; c++) s.f[c] = f[c];
   const double minus[3] = {-df[0], -df[1], -df[2]};
@@ -550,6 +555,9 @@ double LatticeLocalRelax::worst(tagint &owner, tagint &partner, BreakMode &mode)
 {
   for (const int k : dirty) {
     is_dirty[k] = 0;
+    double f[3];
+    BreakMode m;
+    ratio[k] = spring_force(springs[k], f, m);    // at the positions of its last recompute
     tree_update(k);
   }
   dirty.clear();

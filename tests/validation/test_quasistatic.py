@@ -262,3 +262,33 @@ def test_an_error_in_a_quiet_relaxation_is_printed(tmp_path):
     assert result.returncode != 0
     assert re.search(r"ERROR: Invalid variable reference v_missing.*\(in lattice/quasistatic: "
                      r"minimize", result.output), result.output[-1500:]
+
+
+def test_relax_local_continues_from_a_restart_file_as_without(tmp_path):
+    """Three loading steps, a restart file, three more read back: the same breaks in the same
+    order as six steps in one run (the bonds' states and the grains' properties are in the
+    restart file; relax local keeps nothing between calls)."""
+    whole = tmp_path / "whole"
+    counts, table, order = quasistatic_block(whole, 1, " relax local")
+    deck = QS_BLOCK.format(relax=" relax local")
+    head, loop = deck.split("variable        k loop 6\n")
+    loop, tail = loop.split("jump            SELF loop\n")
+    loop = "variable        k loop 3\n" + loop + "jump            SELF loop\n"
+    first = head + loop + "write_restart   qs.restart\n"
+    second = ("read_restart    qs.restart\n"
+              "fix             props all property/atom i_grain d_stiff\n"
+              "fix             hold ends setforce 0 0 0\n"
+              "compute         b all lattice/bonds\n"
+              "min_style       fire\n"
+              # the per-atom data of the restart file go back to the fixes at a run; no bond
+              # is past its threshold after lattice/quasistatic, so this run breaks none
+              "run             0 post no\n") + loop + tail
+    work = tmp_path / "split"
+    r1 = run_deck(first, work, name="in.first")
+    assert r1.returncode == 0, r1.output[-2000:]
+    r2 = run_deck(second, work, name="in.second")
+    assert r2.returncode == 0, r2.output[-2000:]
+    assert sum(counts) > 5, "the test must break bonds"
+    assert [line.split()[1:4] for line in (work / "breaks.txt").read_text().splitlines()] == order
+    rows = read_local_dump(work / "bonds.txt")[1].astype(int)
+    np.testing.assert_array_equal(rows[np.lexsort((rows[:, 1], rows[:, 0]))], table)
