@@ -666,15 +666,20 @@ int LatticeLocalRelax::pack_reverse(int n, int first, double *buf)
   return 3 * n;
 }
 
+// the receiving atom is local, or a ghost that passes the values on in a later swap (the
+// corners of a periodic or multi-rank box)
 void LatticeLocalRelax::unpack_reverse(int n, const int *list, const double *buf)
 {
+  const int nlocal = atom->nlocal;
   for (int i = 0; i < n; i++) {
     const int a = list[i];
     if (comm_mode == Comm::STIFF) {
-      for (int c = 0; c < 3; c++) stiff[6 * (size_t) a + 3 * stiff_part + c] += buf[3 * i + c];
+      double *out = (a < nlocal) ? &stiff[6 * (size_t) a + 3 * stiff_part]
+                                 : &ghost_force[3 * (size_t) (a - nlocal)];
+      for (int c = 0; c < 3; c++) out[c] += buf[3 * i + c];
       continue;
     }
     const double df[3] = {buf[3 * i], buf[3 * i + 1], buf[3 * i + 2]};
-    add_force(a, df);    // a local atom: its force, and the queue
+    add_force(a, df);    // a local atom: its force, and the queue; a ghost: to pass on
   }
 }
