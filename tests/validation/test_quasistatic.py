@@ -16,9 +16,9 @@ import re
 import numpy as np
 import pytest
 from bonded_lattice.io import read_local_dump
-from helpers.decks import (atoms_at, block_2d_deck, opening, pair_lines, patchy_grains, run_deck,
+from helpers.decks import (atoms_at, block_2d_deck, lattice_block, opening, pair_lines, patchy_grains, run_deck,
                            sphere_props)
-from helpers.materials import D, QUARTZ, coeffs
+from helpers.materials import D, QUARTZ, QUARTZ_MASS, coeffs
 
 KN, X0 = QUARTZ[2].Kn, 1.0e-7
 CHAIN_BOX = "-2e-3 5e-3 -2e-3 2e-3 -5e-4 5e-4"
@@ -292,3 +292,53 @@ def test_relax_local_continues_from_a_restart_file_as_without(tmp_path):
     assert [line.split()[1:4] for line in (work / "breaks.txt").read_text().splitlines()] == order
     rows = read_local_dump(work / "bonds.txt")[1].astype(int)
     np.testing.assert_array_equal(rows[np.lexsort((rows[:, 1], rows[:, 0]))], table)
+
+
+# 3D: an fcc block of central springs (Ks = 0, mu_p = 0), bottom held, top pulled in steps;
+# the strength factors spread the thresholds so that bonds break one by one (the last step
+# starts an avalanche through the block: maxbreak 20 keeps its start)
+QS_BLOCK_3D = f"""
+units           si
+atom_style      sphere
+newton          on
+{lattice_block(3, "-2 8 -2 8 -2 12", "0 6 0 6 0 10")}create_atoms    1 region block
+set             type 1 diameter {D!r}
+set             type 1 mass {QUARTZ_MASS[3]!r}
+fix             props all property/atom i_grain d_stiff
+set             atom * i_grain 1
+set             atom * d_stiff 1.0
+""" + pair_lines(coeffs(QUARTZ[3], Ks=0.0, mu_p=0.0),
+                 "stiffness d_stiff grain i_grain strength 0.7 1.3 seed 17") + """\
+neighbor        1.0e-4 bin
+region          bot block INF INF INF INF INF 0.3 units lattice
+region          top block INF INF INF INF 9.7 INF units lattice
+group           bot region bot
+group           top region top
+group           ends union bot top
+fix             hold ends setforce 0 0 0
+compute         b all lattice/bonds
+thermo          100000
+min_style       fire
+variable        k loop 4
+label           loop
+displace_atoms  top move 0 0 {step} units box
+lattice/quasistatic ftol 1.0e-3 break one maxbreak 20 breaks breaks.txt{relax}
+next            k
+jump            SELF loop
+"""
+
+
+def test_relax_local_in_3d_breaks_what_the_minimiser_breaks_in_its_order(tmp_path):
+    """The 3x3 stiffness blocks of the fcc lattice: relax local against FIRE (both at 1e-7 of
+    Kn Xb) and on 2 ranks."""
+    step = 5.0 * QUARTZ[3].Xb    # about 17 layers: 1.2 Xb per layer after 4 steps
+    orders = {}
+    for name, relax, np_ in (("fire", "", 1), ("local", " relax local", 1),
+                             ("local2", " relax local", 2)):
+        work = tmp_path / name
+        result = run_deck(QS_BLOCK_3D.format(step=step, relax=relax), work, np=np_)
+        assert result.returncode == 0, result.output[-2000:]
+        orders[name] = [line.split()[1:4] for line in (work / "breaks.txt").read_text().splitlines()]
+    assert len(orders["fire"]) > 5, "the test must break bonds"
+    assert orders["local"] == orders["fire"]
+    assert orders["local2"] == orders["fire"]
