@@ -18,3 +18,8 @@ for d in layer-extension layer-compression polycrystal expanding; do
             && mv scene.dat scene.$m.dat)
     done
 done
+# the polycrystal in a periodic box (no walls), relaxed by lattice/quasistatic relax local
+bonded-lattice scene polycrystal --n 30 --grains 12 --steps 40 --strain-step 5e-6 \
+    --boundary periodic --relax local --out polycrystal-periodic-local > /dev/null
+(cd polycrystal-periodic-local && lmp -in in.polycrystal.quasistatic \
+    -log log.$DATE.polycrystal-periodic-local.g++.1 -screen none && mv scene.dat scene.quasistatic.dat)
