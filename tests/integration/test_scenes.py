@@ -16,9 +16,9 @@ from bonded_lattice import runner
 from bonded_lattice.conversion import BondParameters
 from bonded_lattice.lattice import pairs_within, read_grains
 from bonded_lattice.scene_study import fracture_summary
-from bonded_lattice.scenes import (Scene, box_lattice, break_steps, broken_bonds, build_model,
-                                   central_spring_bond, plane_moduli, read_scene_dat,
-                                   wall_masks, write_scene)
+from bonded_lattice.scenes import (Scene, bond_angles, box_lattice, break_sequence, break_steps,
+                                   broken_bonds, build_model, central_spring_bond, plane_moduli,
+                                   read_scene_dat, wall_masks, write_scene)
 
 D = 1.0e-3
 
@@ -180,6 +180,27 @@ def test_competent_layer_breaks_first_under_extension(tmp_path):
     assert np.all(model.grain[pairs - 1] == 1)        # both ends in the layer
     # the summary's measure of the same bonds (scene_study.fracture_summary): all in it
     assert fracture_summary(scene, model, pairs)["fraction_in_layer"] == 1.0
+
+
+def test_layer_compression_breaks_inclined_bonds_only(tmp_path):
+    """Layer-parallel compression, relaxed by relax local: the box shortens along x and
+    lengthens along y, so every bond along x is compressed (eps_xx < 0 is continuous across
+    the layer's interfaces) and a central spring breaks only in tension: the first bond to
+    break (breaks.txt, the command's log in order) is inclined (60 or 120 degrees; once
+    cracks open, a bond along x beside one can be pulled), and the walls are in compression
+    along x up to that step."""
+    scene = Scene("layer-compression", n_x=24, n_steps=30, strain_step=1e-5, bond_dumps=1,
+                  relax="local")
+    folder, _ = run(scene, tmp_path)
+    model = build_model(scene)
+    step, pairs = first_broken(folder)
+    logged = break_sequence(folder)
+    angle = bond_angles(logged[:1], model.lattice.positions)[0]
+    assert min(angle, 180.0 - angle) == pytest.approx(60.0, abs=1e-6)
+    dat = read_scene_dat(folder / "scene.dat")
+    assert np.all(dat["sxx"][1:step + 1] < 0)
+    # the log's first breaks are the bonds the dumps find broken at that first step
+    assert {tuple(p) for p in logged[:len(pairs)].tolist()} == {tuple(p) for p in pairs.tolist()}
 
 
 def test_expanding_grain_breaks_its_surroundings_first(tmp_path):
