@@ -26,6 +26,9 @@ from bonded_lattice.scenes import Scene, build_model
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--kind", default="polycrystal")
+    ap.add_argument("--relax", choices=("local", "fire"), default="fire",
+                    help="quasi-static relaxation (default fire: the one of the numbers in "
+                    "docs/scenes.md)")
     ap.add_argument("--n", type=int, default=40, help="particles per row (default 40)")
     ap.add_argument("--steps", type=int, default=40)
     ap.add_argument("--strain-step", type=float, default=5e-6)
@@ -42,7 +45,7 @@ def main() -> None:
     sites = []
     for deformation in args.deformations:
         scene = Scene(args.kind, n_x=args.n, n_steps=args.steps, strain_step=args.strain_step,
-                      bond_dumps=1, deformation=deformation)
+                      bond_dumps=1, deformation=deformation, relax=args.relax)
         folder = out / f"{args.kind}-{deformation}"
         SceneStudy(scene, folder, np_=args.np).run(reuse=args.reuse)
         sites.append(break_sites(folder, build_model(scene).lattice.positions, scene.d,

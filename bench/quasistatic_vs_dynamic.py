@@ -41,6 +41,9 @@ def curve_error(qs: dict, dyn: dict) -> float:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--kind", default="polycrystal")
+    ap.add_argument("--relax", choices=("local", "fire"), default="fire",
+                    help="quasi-static relaxation (default fire: the one of the numbers in "
+                    "docs/scenes.md)")
     ap.add_argument("--n", type=int, default=50, help="particles per row (default 50)")
     ap.add_argument("--steps", type=int, default=40, help="strain steps (default 40)")
     ap.add_argument("--strain-step", type=float, default=5e-6)
@@ -55,7 +58,7 @@ def main() -> None:
 
     out = Path(args.out)
     base = Scene(args.kind, n_x=args.n, n_steps=args.steps, strain_step=args.strain_step,
-                 bond_dumps=0)
+                 bond_dumps=0, relax=args.relax)
     positions = build_model(base).lattice.positions
     runs = [("quasi-static", Scene(**{**base.__dict__, "mode": "quasistatic"}),
              out / "quasistatic")]

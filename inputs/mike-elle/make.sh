@@ -5,7 +5,7 @@ set -e
 DATE=${DATE:-$(date +%d%b%y)}
 scene() {   # folder, kind, options...
     out=$1; kind=$2; shift 2
-    bonded-lattice scene "$kind" --n 30 --out "$out" "$@" > /dev/null
+    bonded-lattice scene "$kind" --n 30 --relax fire --out "$out" "$@" > /dev/null
     bonded-lattice scene "$kind" --n 30 --out "$out" --mode dynamic --crossings 80 "$@" > /dev/null
 }
 scene layer-extension layer-extension --steps 24 --strain-step 5e-6

@@ -249,8 +249,8 @@ SCENE_NUMBERS = {
         "n_steps": ("--steps", "strain steps (default %(default)s)"),
         "strain_step": ("--strain-step", "strain (or grain growth) per step (default "
                         "%(default)g)"),
-        "ftol": ("--ftol", "relaxation tolerance, fraction of Kn Xb (default: 1e-3 with "
-                 "--relax fire, 1e-4 with --relax local)"),
+        "ftol": ("--ftol", "relaxation tolerance, fraction of Kn Xb (default: 1e-4 with "
+                 "--relax local, 1e-3 with --relax fire)"),
         "dt_fraction": ("--dt-fraction", "dynamic: time step as a fraction of the critical "
                         "one (default %(default)s, at most 0.5)"),
     },
@@ -278,8 +278,8 @@ def scene_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("kind", choices=KINDS)
     p.add_argument("--mode", choices=MODES, default=s["mode"])
     p.add_argument("--relax", choices=RELAXATIONS, default=s["relax"],
-                   help="quasistatic: relax by FIRE over the whole box (default) or by "
-                   "lattice/quasistatic relax local, where the forces exceed the tolerance")
+                   help="quasistatic: relax by lattice/quasistatic relax local, where the "
+                   "forces exceed the tolerance (default), or by FIRE over the whole box")
     p.add_argument("--deformation", choices=DEFORMATIONS, default=s["deformation"],
                    help="pure shear (default: the other axis keeps the area) or uniaxial (the "
                    "walls across the other axis held)")
