@@ -18,6 +18,7 @@ import argparse
 import json
 from pathlib import Path
 
+from bonded_lattice.cli_options import relax_option
 from bonded_lattice.first_breaks import break_sites, first_breaks_png
 from bonded_lattice.scene_study import SceneStudy
 from bonded_lattice.scenes import Scene, build_model
@@ -26,9 +27,7 @@ from bonded_lattice.scenes import Scene, build_model
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--kind", default="polycrystal")
-    ap.add_argument("--relax", choices=("local", "fire"), default="fire",
-                    help="quasi-static relaxation (default fire: the one of the numbers in "
-                    "docs/scenes.md)")
+    relax_option(ap, "fire", "the relaxation of the numbers in docs/scenes.md")
     ap.add_argument("--n", type=int, default=40, help="particles per row (default 40)")
     ap.add_argument("--steps", type=int, default=40)
     ap.add_argument("--strain-step", type=float, default=5e-6)

@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
+from bonded_lattice.cli_options import relax_option
 from bonded_lattice.plotting import angle_histogram_png, scene_stress_png
 from bonded_lattice.scene_study import SceneStudy
 from bonded_lattice.scenes import Scene, bond_angles, broken_bonds, build_model, read_scene_dat
@@ -41,9 +42,7 @@ def curve_error(qs: dict, dyn: dict) -> float:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--kind", default="polycrystal")
-    ap.add_argument("--relax", choices=("local", "fire"), default="fire",
-                    help="quasi-static relaxation (default fire: the one of the numbers in "
-                    "docs/scenes.md)")
+    relax_option(ap, "fire", "the relaxation of the numbers in docs/scenes.md")
     ap.add_argument("--n", type=int, default=50, help="particles per row (default 50)")
     ap.add_argument("--steps", type=int, default=40, help="strain steps (default 40)")
     ap.add_argument("--strain-step", type=float, default=5e-6)

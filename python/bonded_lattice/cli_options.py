@@ -272,14 +272,21 @@ SCENE_NUMBERS = {
 }
 
 
+def relax_option(p: argparse.ArgumentParser, default: str, why: str = "") -> None:
+    """``--relax``: how a quasi-static scene relaxes (:data:`bonded_lattice.scenes.RELAXATIONS`);
+    ``why``: the reason for a default other than the scenes' (for the help)."""
+    p.add_argument("--relax", choices=RELAXATIONS, default=default,
+                   help="quasistatic: relax by lattice/quasistatic relax local, where the "
+                   "forces exceed the tolerance, or by FIRE over the whole box (default "
+                   f"{default}{': ' + why if why else ''})")
+
+
 def scene_options(p: argparse.ArgumentParser) -> None:
     """Options of ``scene``: the shared ones with the defaults of :class:`Scene`'s fields."""
     s = _field_defaults(Scene)
     p.add_argument("kind", choices=KINDS)
     p.add_argument("--mode", choices=MODES, default=s["mode"])
-    p.add_argument("--relax", choices=RELAXATIONS, default=s["relax"],
-                   help="quasistatic: relax by lattice/quasistatic relax local, where the "
-                   "forces exceed the tolerance (default), or by FIRE over the whole box")
+    relax_option(p, s["relax"])
     p.add_argument("--deformation", choices=DEFORMATIONS, default=s["deformation"],
                    help="pure shear (default: the other axis keeps the area) or uniaxial (the "
                    "walls across the other axis held)")
