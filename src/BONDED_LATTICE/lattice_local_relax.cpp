@@ -166,6 +166,10 @@ void LatticeLocalRelax::set_up()
     if (i >= 0 && i < nlocal) held[i] |= (unsigned char) held_ids[e + 1];
   }
   budget = BUDGET_FRACTION * pair->smallest_radius();
+  if (!(budget > 0.0))
+    error->all(FLERR, "lattice/quasistatic relax local needs particles of positive radius (the "
+               "smallest is {}): a particle may move a twentieth of it between force "
+               "evaluations", pair->smallest_radius());
   max_move = 0.0;
   build_springs();
   build_colours();

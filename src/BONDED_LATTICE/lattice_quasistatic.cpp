@@ -346,8 +346,20 @@ void LatticeQuasistatic::run_local(bigint &broken, int &tension, int &shear, big
 {
   LatticeLocalRelax lr(lmp, pair, ftol, omega);
   lr.check_model();
+  // passes in a row that broke nothing: each ends because particles moved far (then the
+  // next goes on from there) or to check a pass's end state; a thousand means the
+  // relaxation does not settle (e.g. contacts that open and close between passes)
+  static constexpr int MAX_IDLE_PASSES = 1000;
+  int idle = 0;
   bool done = false;
   while (!done) {
+    if (++idle > MAX_IDLE_PASSES) {
+      if (comm->me == 0)
+        error->warning(FLERR, "lattice/quasistatic relax local: {} passes without a break did not "
+                       "settle (largest force component {:.6g}, ftol {:.6g}); stopping with the bonds "
+                       "as they are (try relax minimize)", MAX_IDLE_PASSES, lr.largest_force(), ftol);
+      break;
+    }
     lr.probe_fixes();
     command_quietly("run 0 post no");
     lr.set_up();
@@ -372,9 +384,11 @@ void LatticeQuasistatic::run_local(bigint &broken, int &tension, int &shear, big
       }
       changed = true;
       if (break_all) {
+        idle = 0;
         broken += lr.break_beyond_threshold(tension, shear);
         continue;
       }
+      idle = 0;
       lr.break_spring(owner, partner, mode);
       record_break(owner, partner, mode, worst);
       broken++;
