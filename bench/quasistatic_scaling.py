@@ -19,28 +19,11 @@ from __future__ import annotations
 
 import argparse
 import math
-import re
 from pathlib import Path
 
+from bonded_lattice.scene_analysis import relaxation_costs
 from bonded_lattice.scene_study import SceneStudy
 from bonded_lattice.scenes import Scene
-
-SUMMARY = re.compile(r"lattice/quasistatic: (\d+) bonds broke .*? in (\d+) relaxations \((\d+) "
-                     r"(minimiser iterations|sweeps, (\d+) particle moves)\)")
-
-
-def costs(log: Path, particles: int) -> dict:
-    """Breaks, relaxations, iterations or sweeps and particle updates of a run's
-    lattice/quasistatic calls, summed over the strain steps (from log.lammps)."""
-    out = {"breaks": 0, "relaxations": 0, "iterations": 0, "updates": 0}
-    for m in SUMMARY.finditer(log.read_text()):
-        out["breaks"] += int(m.group(1))
-        out["relaxations"] += int(m.group(2))
-        out["iterations"] += int(m.group(3))
-        # FIRE evaluates every particle's force in each iteration
-        out["updates"] += int(m.group(5)) if m.group(5) else int(m.group(3)) * particles
-    return out
-
 
 def break_order(run_dir: Path) -> list[tuple[str, str]]:
     """The broken bonds in the order they broke (breaks.txt: step, id1, id2, mode, ratio)."""
@@ -70,7 +53,7 @@ def main() -> None:
             scene = Scene("layer-extension", n_x=n, n_steps=args.steps, relax=relax)
             out = Path(args.out) / f"n{n}_{relax}"
             summary = SceneStudy(scene, out, np_=args.np, pictures=False).run(reuse=args.reuse)
-            c = costs(out / "log.lammps", scene.n)
+            c = relaxation_costs(out / "log.lammps", scene.n)
             rows.append({"n": n, "particles": scene.n, "relax": relax, **c,
                          "wall": summary["wall_time_s"], "order": break_order(out)})
 

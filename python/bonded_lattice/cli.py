@@ -183,6 +183,16 @@ def _scene(args: argparse.Namespace):
                  atom_style=args.atom_style or ("sphere" if args.kind == "expanding" else "atomic"))
 
 
+def _cost(summary: dict) -> str:
+    """The work of a scene run: its relaxations' (quasi-static) or its time steps."""
+    relax = summary.get("relaxation")
+    if not relax:
+        return f"{summary['steps']} time steps"
+    what = "sweeps" if relax["method"] == "local" else "minimiser iterations"
+    return (f"{relax['relaxations']} relaxations, {relax['iterations']} {what}, "
+            f"{relax['updates']:.3g} particle updates")
+
+
 def _fracture_line(summary: dict) -> str:
     """The fracture measures of a scene's summary (those of its kind), one line."""
     def num(value: float | None) -> str:
@@ -224,7 +234,7 @@ def cmd_scene(args: argparse.Namespace) -> int:
           f"{summary['broken']} broken bonds ({summary['broken_tension']} tension, "
           f"{summary['broken_shear']} shear) at strain {summary['strain']:.4g}; peak "
           f"stress {summary['peak_stress'] / 1e6:.4g} MPa; {orientation}; "
-          f"{summary['steps']} steps or iterations; {summary['wall_time_s']} s")
+          f"{_cost(summary)}; {summary['wall_time_s']} s")
     print(_fracture_line(summary))
     print(f"wrote {out}/summary.json, broken_bonds.png, stress_strain.png")
     return 0

@@ -11,6 +11,7 @@ periodic box (:func:`first_breaks_near_edges`).
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -165,3 +166,24 @@ def first_breaks_near_edges(run_dir: str | Path, positions: np.ndarray, bonds: n
     near = edge_distance(first, positions, period) <= strip * d
     return {"order": "step", "n": int(len(first)), "step": last if last != late else -1,
             "near": float(near.mean()), "expected": expected, "strip_d": strip}
+
+
+# the summary line lattice/quasistatic prints at the end of every call
+RELAX_SUMMARY = re.compile(r"lattice/quasistatic: (\d+) bonds broke .*? in (\d+) relaxations "
+                           r"\((\d+) (minimiser iterations|time steps|sweeps, (\d+) particle "
+                           r"moves)\)")
+
+
+def relaxation_costs(log: str | Path, particles: int) -> dict[str, int]:
+    """What the quasi-static calls of a run cost, summed over its strain steps (the summary
+    lines of ``lattice/quasistatic`` in its log): bonds broken, relaxations, minimiser
+    iterations, time steps or sweeps (``iterations``), and particle updates (``updates``:
+    the particle moves of relax local; FIRE and damped dynamics evaluate every particle's
+    force each iteration or step, iterations x particles)."""
+    out = {"breaks": 0, "relaxations": 0, "iterations": 0, "updates": 0}
+    for m in RELAX_SUMMARY.finditer(Path(log).read_text()):
+        out["breaks"] += int(m.group(1))
+        out["relaxations"] += int(m.group(2))
+        out["iterations"] += int(m.group(3))
+        out["updates"] += int(m.group(5)) if m.group(5) else int(m.group(3)) * particles
+    return out

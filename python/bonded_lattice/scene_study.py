@@ -16,6 +16,7 @@ import numpy as np
 
 from .fractures import intergranular_fraction, layer_fractures, radial_fractures
 from .runner import RunResult
+from .scene_analysis import relaxation_costs
 from .scenes import (Scene, SceneModel, bond_angles, box_lattice, box_period, break_steps,
                      broken_bonds, build_model, crack_normal_stats, first_breaks_near_edges,
                      lattice_bond_ids, read_bond_dump, read_scene_dat, scene_title,
@@ -72,6 +73,9 @@ def summarize(scene: Scene, run_dir: str | Path, positions: np.ndarray,
         "steps": int(dat["step"][-1]),
         "orientation": crack_normal_stats(angles),
     }
+    if scene.mode == "quasistatic":
+        summary["relaxation"] = {"method": scene.relax,
+                                 **relaxation_costs(run_dir / "log.lammps", scene.n)}
     if scene.bond_dumps or scene.break_order:
         summary["first_breaks"] = first_breaks_at_edges(scene, run_dir, positions)
     summary.update(fracture_summary(scene, model or build_model(scene), final[:, :2]))
