@@ -57,7 +57,8 @@ from __future__ import annotations
 
 from .io.dump import read_bond_dump
 from .scene_analysis import (bond_angles, break_sequence, break_steps, broken_bonds,
-                             crack_normal_stats, edge_distance, first_breaks_near_edges)
+                             crack_normal_stats, edge_distance, first_breaks_near_edges,
+                             relaxation_costs)
 from .scene_deck import (ATOMIC_SAVING_PER_PARTICLE, BYTES_PER_PARTICLE, BYTES_PER_RANK,
                          DATA_FILE, SCENE_COLUMNS, TITLES, deck_text, expected_memory,
                          read_scene_dat, scene_title, write_scene)
@@ -73,5 +74,5 @@ __all__ = ["ATOMIC_SAVING_PER_PARTICLE", "BOUNDARIES", "BYTES_PER_PARTICLE", "BY
            "central_spring_bond", "crack_normal_stats", "deck_text", "edge_distance",
            "expanding_grains", "expected_memory", "first_breaks_near_edges", "grain_box",
            "grain_model", "lattice_bond_ids", "periodic_pairs", "plane_moduli", "read_bond_dump",
-           "read_scene_dat", "scene_title", "wall_masks", "write_scene"]
+           "read_scene_dat", "relaxation_costs", "scene_title", "wall_masks", "write_scene"]
 
