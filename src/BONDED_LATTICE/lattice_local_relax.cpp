@@ -442,6 +442,22 @@ bool LatticeLocalRelax::free_force_above(int a) const
 void LatticeLocalRelax::move(int a)
 {
   const double *d = &stiff[6 * (size_t) a];
+  if (held[a] == 4) {    // the plane (2D, z held): the 2x2 block of x and y
+    const double trace = d[0] + d[1];
+    const double mxx = d[0] + 1.0e-12 * trace, myy = d[1] + 1.0e-12 * trace, mxy = d[3];
+    const double det = mxx * myy - mxy * mxy;
+    if (!(std::fabs(det) > 0.0)) return;
+    const double fx = fnet[3 * (size_t) a], fy = fnet[3 * (size_t) a + 1];
+    const double dx[2] = {omega * (myy * fx - mxy * fy) / det, omega * (mxx * fy - mxy * fx) / det};
+    double **x = atom->x;
+    for (int c = 0; c < 2; c++) {
+      disp[3 * (size_t) a + c] += dx[c];
+      x[a][c] += dx[c];
+      max_move = MAX(max_move, std::fabs(disp[3 * (size_t) a + c]));
+    }
+    moved.push_back(a);
+    return;
+  }
   double m[3][3] = {{d[0], d[3], d[4]}, {d[3], d[1], d[5]}, {d[4], d[5], d[2]}};
   double rhs[3];
   const double trace = d[0] + d[1] + d[2];
@@ -486,7 +502,11 @@ void LatticeLocalRelax::exchange_forces()
 
 LatticeLocalRelax::Outcome LatticeLocalRelax::relax(bigint maxsweeps, bigint &sweeps, bigint &moves)
 {
-  exchange_forces();    // the springs broken since the last relax
+  // one rank and no ghosts (a box without periodic faces): nothing to send
+  int mine = (atom->nghost > 0) ? 1 : 0;
+  MPI_Allreduce(&mine, &communicate, 1, MPI_INT, MPI_MAX, world);
+  if (comm->nprocs > 1) communicate = 1;
+  if (communicate) exchange_forces();    // the springs broken since the last relax
   std::vector<int> work;
   bigint my_moves = 0;
   Outcome outcome = Outcome::SWEEPS;
@@ -516,7 +536,7 @@ LatticeLocalRelax::Outcome LatticeLocalRelax::relax(bigint maxsweeps, bigint &sw
       }
       my_moves += (bigint) moved.size();
       comm_mode = Comm::DISP;
-      pair->carry_forward(this);    // moved ghosts join `moved`
+      if (communicate) pair->carry_forward(this);    // moved ghosts join `moved`
       phase_stamp++;
       for (const int a : moved)
         for (int e = adj_start[a]; e < adj_start[a + 1]; e++) {
@@ -525,7 +545,7 @@ LatticeLocalRelax::Outcome LatticeLocalRelax::relax(bigint maxsweeps, bigint &sw
           stamp[k] = phase_stamp;
           recompute(k);
         }
-      exchange_forces();
+      if (communicate) exchange_forces();
     }
   }
   bigint all_moves = 0;

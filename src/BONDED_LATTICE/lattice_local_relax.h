@@ -109,6 +109,7 @@ class LatticeLocalRelax : protected Pointers, public LatticeForwardPart, public 
   std::vector<int> dirty;                 // springs whose ratio changed since the tree was
   std::vector<unsigned char> is_dirty;    // brought up to date (worst)
   double max_move;                        // largest displacement of a local atom since set_up
+  int communicate = 1;                    // 0: one rank without ghosts, nothing to send
 
   enum class Comm { DISP, FORCE, COLOUR, STIFF } comm_mode;
   int stiff_part;                         // STIFF: which 3 of the 6 components
