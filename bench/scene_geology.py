@@ -72,8 +72,9 @@ def extension(out: Path, reuse: bool) -> dict:
     series = {}
     print("\n| contrast | seed | layer thickness (mm, rows) | first crossing at e | crossings "
           "(e at which reached) | spacing / thickness at the end | in the layer: at the "
-          "first crossing, at the end | broken at the end | matrix breaks reach 30 at e | wall time (s) |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "first crossing, at the end | broken at the end | matrix breaks reach 30 at e | crossings "
+          "and spacing / thickness just before | wall time (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for c, seed in EXTENSION_RUNS:
         for t in THICKNESSES:
             tag = f" --grain-seed {seed}" if seed != 1 else ""
@@ -91,15 +92,17 @@ def extension(out: Path, reuse: bool) -> dict:
                     last = r["fractures_in_layer"]
             first = next((r for r in along if r["fractures_in_layer"]), None)
             # broken bonds outside the layer: 30 of them are half a crack across the box
-            matrix = next((r["strain"] for r in along
-                           if r["broken"] and r["broken"] * (1 - r["fraction_in_layer"]) >= 30),
-                          None)
+            cracked = [bool(r["broken"]) and r["broken"] * (1 - r["fraction_in_layer"]) >= 30
+                       for r in along]
+            matrix = along[cracked.index(True)]["strain"] if any(cracked) else None
+            before = ([r for r, m in zip(along, cracked) if not m] or along[:1])[-1]
             end = along[-1]
             print(f"| {c:g} | {seed} | {thick * 1e3:.2f} ({rows}) | "
                   f"{fmt(first['strain'] if first else None)} | {', '.join(reached) or '0'} | "
                   f"{fmt(end['spacing_to_thickness'])} | "
                   f"{fmt(first['fraction_in_layer'] if first else None)}, "
                   f"{fmt(end['fraction_in_layer'])} | {end['broken']} | {fmt(matrix)} | "
+                  f"{before['fractures_in_layer']}, {fmt(before['spacing_to_thickness'])} | "
                   f"{summary['wall_time_s']} |")
     return series
 
