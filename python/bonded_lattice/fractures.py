@@ -76,11 +76,30 @@ def _check_mask(mask: np.ndarray, n: int, name: str) -> np.ndarray:
     return m
 
 
-def bond_midpoints(pairs: np.ndarray, positions: np.ndarray) -> np.ndarray:
-    """(m, 2) midpoints (x, y) of bonds (id1, id2), 1-based ids into ``positions``."""
+def _check_period(period: tuple[float, float] | None) -> np.ndarray | None:
+    """The (x, y) lengths of a periodic box as an array, or None (a box with walls)."""
+    if period is None:
+        return None
+    length = np.asarray(period, dtype=float).reshape(-1)
+    if length.shape != (2,) or not np.all(np.isfinite(length) & (length > 0)):
+        raise ValueError(f"period = {period} is out of range: need two box lengths "
+                         "(x, y), each 0 < L < inf")
+    return length
+
+
+def bond_midpoints(pairs: np.ndarray, positions: np.ndarray,
+                   period: tuple[float, float] | None = None) -> np.ndarray:
+    """(m, 2) midpoints (x, y) of bonds (id1, id2), 1-based ids into ``positions``; with
+    ``period`` (the (x, y) lengths of a periodic box) a bond across the seam is taken at
+    its minimum image, its midpoint beside particle id1 (up to d/2 outside the cell)."""
     pos = np.asarray(positions, dtype=float)
     p = _check_pairs(pairs, len(pos))
-    return 0.5 * (pos[p[:, 0] - 1, :2] + pos[p[:, 1] - 1, :2])
+    box = _check_period(period)
+    a, b = pos[p[:, 0] - 1, :2], pos[p[:, 1] - 1, :2]
+    sep = b - a
+    if box is not None:
+        sep -= box * np.round(sep / box)
+    return a + 0.5 * sep
 
 
 def _components(n: int, i: np.ndarray, j: np.ndarray) -> np.ndarray:
@@ -103,22 +122,45 @@ def _components(n: int, i: np.ndarray, j: np.ndarray) -> np.ndarray:
     return labels.astype(np.int64)
 
 
-def _group(midpoints: np.ndarray, d: float) -> np.ndarray:
-    """Fracture label of every midpoint: components of the midpoints at most LINK d apart."""
+def _group(midpoints: np.ndarray, d: float, period: np.ndarray | None = None) -> np.ndarray:
+    """Fracture label of every midpoint: components of the midpoints at most LINK d apart
+    (with ``period``, the box lengths of a periodic box: by minimum image, the midpoints
+    searched together with their eight images shifted by the periods)."""
     m = len(midpoints)
     if m == 0:
         return np.zeros(0, dtype=np.int64)
-    p3 = np.zeros((m, 3))
-    p3[:, :2] = midpoints
+    shifts = [(0.0, 0.0)]
+    if period is not None:
+        shifts += [(sx * period[0], sy * period[1]) for sx in (-1, 0, 1) for sy in (-1, 0, 1)
+                   if sx or sy]
+    p3 = np.zeros((m * len(shifts), 3))
+    for k, (sx, sy) in enumerate(shifts):
+        p3[k * m:(k + 1) * m, 0] = midpoints[:, 0] + sx
+        p3[k * m:(k + 1) * m, 1] = midpoints[:, 1] + sy
     i, j, _ = pairs_within(p3, LINK * d)
-    return _components(m, i, j)
+    i, j = i % m, j % m
+    keep = i != j
+    return _components(m, i[keep], j[keep])
 
 
-def fracture_labels(pairs: np.ndarray, positions: np.ndarray, d: float) -> np.ndarray:
+def fracture_labels(pairs: np.ndarray, positions: np.ndarray, d: float,
+                    period: tuple[float, float] | None = None) -> np.ndarray:
     """Fracture label (0, 1, ...) of every broken bond (id1, id2): broken bonds whose
     midpoints in ``positions`` (the initial lattice of bond length d) are at most d apart
-    belong to one fracture (the module's rule), and so do chains of them."""
-    return _group(bond_midpoints(pairs, positions), _check_d(d))
+    belong to one fracture (the module's rule), and so do chains of them; with ``period``
+    (the (x, y) lengths of a periodic box) by minimum image, across the seam."""
+    box = _check_period(period)
+    return _group(bond_midpoints(pairs, positions, period), _check_d(d), box)
+
+
+def _mean_x(x: np.ndarray, period_x: float | None) -> float:
+    """Mean of x, or on a circle of length ``period_x`` the circular mean (a fracture
+    across the seam of a periodic box lies at the seam, not in the middle of the box),
+    then in (-period_x / 2, period_x / 2]."""
+    if period_x is None:
+        return float(np.mean(x))
+    phase = np.exp(2j * math.pi * x / period_x).mean()
+    return float(np.angle(phase) / (2 * math.pi) * period_x)
 
 
 def intergranular_fraction(pairs: np.ndarray, grain: np.ndarray) -> float | None:
@@ -132,14 +174,15 @@ def intergranular_fraction(pairs: np.ndarray, grain: np.ndarray) -> float | None
 
 
 def layer_fractures(pairs: np.ndarray, positions: np.ndarray, layer: np.ndarray,
-                    d: float) -> dict:
+                    d: float, period: tuple[float, float] | None = None) -> dict:
     """The fractures of a competent layer parallel to x (``layer``: its particles).
 
     Returns ``fraction_in_layer``, the share of broken bonds with both particles in the
     layer (None without broken bonds); ``fractures_in_layer``, the number of fractures
     crossing the layer; ``layer_fracture_x``, their positions along x (sorted);
     ``layer_thickness``; and ``spacing_to_thickness``, the mean gap between neighbouring
-    crossing fractures over the layer thickness (None with fewer than two).
+    crossing fractures over the layer thickness (None with fewer than two; periodic box:
+    below).
 
     The layer's fractures are the fractures (:func:`fracture_labels`) of its own broken
     bonds, those with both particles in it: a crack that crosses the layer twice, joined
@@ -152,6 +195,12 @@ def layer_fractures(pairs: np.ndarray, positions: np.ndarray, layer: np.ndarray,
     the convention of the box height.  The spacing uses the gaps between neighbouring
     crossing fractures only: the box's side walls, where the load is applied, are not
     fractures, so the matrix beyond the outermost crossings does not count.
+
+    With ``period`` (the (x, y) lengths of a periodic box, no walls) the bonds across the
+    seam are taken at their minimum image and grouped across it, a fracture's position is
+    the circular mean of its midpoints' x, in [x0, x0 + L_x) with x0 the lowest particle x,
+    and the n crossings lie on a ring of length L_x: the mean spacing is L_x / n, defined
+    for one crossing too (the fracture and its periodic image).
     """
     pos = np.asarray(positions, dtype=float)
     d = _check_d(d)
@@ -162,16 +211,24 @@ def layer_fractures(pairs: np.ndarray, positions: np.ndarray, layer: np.ndarray,
     row = ROW * d
     thickness = y_top - y_bot + row
     both = inside[p[:, 0] - 1] & inside[p[:, 1] - 1] if len(p) else np.zeros(0, dtype=bool)
-    mid = bond_midpoints(p[both], pos)
-    labels = _group(mid, d)
+    box = _check_period(period)
+    mid = bond_midpoints(p[both], pos, period)
+    labels = _group(mid, d, box)
     tol = 1e-6 * d
+    x0 = float(pos[:, 0].min())
     xs = []
     for k in range(int(labels.max()) + 1 if len(labels) else 0):
         mk = mid[labels == k]
         if mk[:, 1].min() <= y_bot + 0.5 * row + tol and mk[:, 1].max() >= y_top - 0.5 * row - tol:
-            xs.append(float(mk[:, 0].mean()))
+            if box is None:
+                xs.append(_mean_x(mk[:, 0], None))
+            else:
+                xs.append(x0 + (_mean_x(mk[:, 0], float(box[0])) - x0) % float(box[0]))
     xs.sort()
-    spacing = float(np.mean(np.diff(xs))) / thickness if len(xs) >= 2 else None
+    if box is not None:
+        spacing = float(box[0]) / len(xs) / thickness if xs else None
+    else:
+        spacing = float(np.mean(np.diff(xs))) / thickness if len(xs) >= 2 else None
     return {"fractures_in_layer": len(xs),
             "fraction_in_layer": float(both.mean()) if len(p) else None,
             "spacing_to_thickness": spacing, "layer_thickness": thickness,

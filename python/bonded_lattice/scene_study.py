@@ -23,24 +23,56 @@ from .scenes import (Scene, SceneModel, bond_angles, box_lattice, box_period, br
                      write_scene)
 from .study import Study
 
-__all__ = ["SceneStudy", "first_breaks_at_edges", "fracture_summary", "picture_scene", "run_scene",
-           "summarize"]
+__all__ = ["SceneStudy", "first_breaks_at_edges", "fracture_summary", "fractures_along",
+           "picture_scene", "run_scene", "summarize"]
 
 
 def fracture_summary(scene: Scene, model: SceneModel, pairs: np.ndarray) -> dict:
     """The geology a scene exists to show, from its broken bonds (id1, id2)
     (:mod:`bonded_lattice.fractures`, docs/scenes.md): layer scenes
     ``fractures_in_layer``, ``fraction_in_layer``, ``spacing_to_thickness`` (and the
-    ``layer_thickness`` and ``layer_fracture_x`` they come from); polycrystals and
+    ``layer_thickness`` and ``layer_fracture_x`` they come from; in a periodic box across
+    its seam, the spacing the box length over the count); polycrystals and
     expanding grains ``intergranular_fraction``; expanding grains ``radial_fractures``."""
     positions = model.lattice.positions
     if scene.kind.startswith("layer"):
-        return layer_fractures(pairs, positions, model.grain == 1, scene.d)
+        period = box_period(model.lattice) if scene.boundary == "periodic" else None
+        return layer_fractures(pairs, positions, model.grain == 1, scene.d, period)
     out = {"intergranular_fraction": intergranular_fraction(pairs, model.grain)}
     if scene.kind == "expanding":
         out["radial_fractures"] = radial_fractures(pairs, positions,
                                                    np.isin(model.grain, model.expanding),
                                                    scene.d)
+    return out
+
+
+def fractures_along(scene: Scene, run_dir: str | Path,
+                    model: SceneModel | None = None) -> list[dict]:
+    """The fracture measures (:func:`fracture_summary`) along the loading of a finished
+    quasi-static run with bond dumps (``--bond-dumps K``): one dict per ``bonds.<k>.txt``,
+    in the order of k, with ``step`` k, ``strain`` (e_xx, or the growth of expanding grains,
+    after strain step k: the k-th line of ``scene.dat``), ``broken`` (broken bonds) and the
+    measures of that dump's broken bonds."""
+    if scene.mode != "quasistatic":
+        raise ValueError(f"mode = {scene.mode!r}: need 'quasistatic' (the dumps of a dynamic "
+                         "run are numbered by time step, not strain step)")
+    run_dir = Path(run_dir)
+    model = model or build_model(scene)
+    dat = read_scene_dat(run_dir / "scene.dat")
+    load = dat["growth"] if scene.kind == "expanding" else dat["exx"]
+    at_step = {int(k): float(e) for k, e in zip(dat["k"], load)}
+    steps = sorted(int(f.name.split(".")[1]) for f in run_dir.glob("bonds.*.txt")
+                   if f.name.split(".")[1].isdigit())
+    if not steps:
+        raise ValueError(f"{run_dir}: no bonds.<k>.txt dumps (run the scene with --bond-dumps)")
+    out = []
+    for k in steps:
+        if k not in at_step:
+            raise ValueError(f"{run_dir}: bonds.{k}.txt has no line of step {k} in scene.dat")
+        pairs = broken_bonds(run_dir / f"bonds.{k}.txt")[:, :2]
+        row = {"step": k, "strain": at_step[k], "broken": int(len(pairs))}
+        row.update(fracture_summary(scene, model, pairs))
+        out.append(row)
     return out
 
 

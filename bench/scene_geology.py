@@ -1,0 +1,223 @@
+"""The geology the scenes exist to show (issue 20, point 4), measured at small sizes.
+
+Runs (or, with --reuse, reads) quasi-static scenes of 4200 particles (60 per row, 70 rows)
+on one rank and prints the tables of docs/scenes.md, "The geology, measured":
+
+1. competent layer, layer-parallel extension, periodic box: three layer thicknesses at two
+   stiffness contrasts; the layer-crossing fractures and their spacing over the layer
+   thickness along the loading (from the bond dumps, ``scene_study.fractures_along``);
+2. competent layer, layer-parallel compression, periodic box: what breaks and where;
+3. polycrystal in pure shear, periodic box: the intergranular share of the breaks against the
+   grain-boundary strength factor (same seed);
+4. expanding grains (walls held): the radial fractures against the growth.
+
+    python bench/scene_geology.py --out scene-geology --img docs/img/scenes_layer_spacing.png
+
+Each run is the ``bonded-lattice scene`` command printed beside it (``--out`` its folder).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+import numpy as np
+
+from bonded_lattice.cli import _scene
+from bonded_lattice.cli_options import running_options, scene_options
+from bonded_lattice.fractures import intergranular_fraction
+from bonded_lattice.scene_study import SceneStudy, fractures_along
+from bonded_lattice.scenes import Scene, bond_angles, broken_bonds, build_model, lattice_bond_ids
+
+BASE = "--n 60 --np 1 --relax local --boundary periodic"
+THICKNESSES = (0.1, 0.15, 0.2)
+#: (contrast, grain seed) of the extension runs: three draws of the disorder at contrast 10,
+#: one at the scenes' default contrast 3
+EXTENSION_RUNS = ((10.0, 1), (10.0, 2), (10.0, 3), (3.0, 1))
+EXTENSION = "layer-extension {base} --steps 50 --strain-step 2e-6 --bond-dumps 1 " \
+            "--layer-thickness {t} --contrast {c:g}{seed}"
+COMPRESSION = "layer-compression {base} --steps 40 --strain-step 1e-5 --bond-dumps 2 " \
+              "--contrast 10"
+POLYCRYSTAL = "polycrystal {base} --grains 30 --steps 40 --strain-step 5e-6 " \
+              "--boundary-strength {g:g}"
+BOUNDARY_STRENGTHS = (0.3, 0.5, 0.7, 1.0)
+EXPANDING = "expanding --n 60 --np 1 --relax local --grains 20 --expanding 3 --steps 30 " \
+            "--strain-step 5e-5 --bond-dumps 1"
+
+
+def scene_of(command: str) -> Scene:
+    """The Scene of a ``bonded-lattice scene`` command line (without ``--out``)."""
+    p = argparse.ArgumentParser()
+    scene_options(p)
+    running_options(p)
+    return _scene(p.parse_args(command.split()))
+
+
+def run(command: str, name: str, out: Path, reuse: bool) -> tuple[Scene, dict]:
+    """Run (or with ``reuse`` read) one scene into out/name; its summary and folder."""
+    scene = scene_of(command)
+    folder = out / name
+    print(f"bonded-lattice scene {command} --run --out {name}", flush=True)
+    summary = SceneStudy(scene, folder, np_=1).run(reuse=reuse)
+    return scene, summary | {"folder": str(folder)}
+
+
+def fmt(value: float | None, digits: int = 3) -> str:
+    return "-" if value is None else f"{value:.{digits}g}"
+
+
+def extension(out: Path, reuse: bool) -> dict:
+    """Table 1: the layer-crossing fractures along the loading."""
+    series = {}
+    print("\n| contrast | seed | layer thickness (mm, rows) | first crossing at e | crossings "
+          "(e at which reached) | spacing / thickness at the end | in the layer: at the "
+          "first crossing, at the end | broken at the end | matrix breaks reach 30 at e | crossings "
+          "and spacing / thickness just before | wall time (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for c, seed in EXTENSION_RUNS:
+        for t in THICKNESSES:
+            tag = f" --grain-seed {seed}" if seed != 1 else ""
+            scene, summary = run(EXTENSION.format(base=BASE, t=t, c=c, seed=tag),
+                                 f"extension-c{c:g}-t{t:g}" + (f"-s{seed}" if seed != 1 else ""),
+                                 out, reuse)
+            along = fractures_along(scene, summary["folder"])
+            series[(c, seed, t)] = along
+            thick = along[0]["layer_thickness"]
+            rows = round(thick / (np.sqrt(3) / 2 * scene.d))
+            reached, last = [], 0
+            for r in along:
+                if r["fractures_in_layer"] > last:
+                    reached.append(f"{r['fractures_in_layer']} ({r['strain']:.3g})")
+                    last = r["fractures_in_layer"]
+            first = next((r for r in along if r["fractures_in_layer"]), None)
+            # broken bonds outside the layer: 30 of them are half a crack across the box
+            cracked = [bool(r["broken"]) and r["broken"] * (1 - r["fraction_in_layer"]) >= 30
+                       for r in along]
+            matrix = along[cracked.index(True)]["strain"] if any(cracked) else None
+            before = ([r for r, m in zip(along, cracked) if not m] or along[:1])[-1]
+            end = along[-1]
+            print(f"| {c:g} | {seed} | {thick * 1e3:.2f} ({rows}) | "
+                  f"{fmt(first['strain'] if first else None)} | {', '.join(reached) or '0'} | "
+                  f"{fmt(end['spacing_to_thickness'])} | "
+                  f"{fmt(first['fraction_in_layer'] if first else None)}, "
+                  f"{fmt(end['fraction_in_layer'])} | {end['broken']} | {fmt(matrix)} | "
+                  f"{before['fractures_in_layer']}, {fmt(before['spacing_to_thickness'])} | "
+                  f"{summary['wall_time_s']} |")
+    return series
+
+
+def compression(out: Path, reuse: bool) -> None:
+    """Table 2: what breaks and where under layer-parallel compression."""
+    scene, summary = run(COMPRESSION.format(base=BASE), "compression", out, reuse)
+    model = build_model(scene)
+    pairs = broken_bonds(Path(summary["folder"]) / "bonds.final.txt")[:, :2].astype(np.int64)
+    layer = model.grain == 1
+    a, b = layer[pairs[:, 0] - 1], layer[pairs[:, 1] - 1]
+    angles = bond_angles(pairs, model.lattice.positions)
+    horizontal = np.minimum(angles, 180 - angles) < 15
+    print("\n| broken | peak -sigma_xx (MPa) at e | in the layer | across an interface | "
+          "in the matrix | x-parallel bonds (cracks normal to x) | diagonal bonds | "
+          "crossings of the layer | wall time (s) |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    n = max(len(pairs), 1)
+    print(f"| {len(pairs)} | {summary['peak_stress'] / 1e6:.3g} at {summary['peak_at_strain']:.3g} | "
+          f"{(a & b).sum() / n:.3f} | {(a ^ b).sum() / n:.3f} | {(~a & ~b).sum() / n:.3f} | "
+          f"{horizontal.mean() if len(pairs) else 0:.3f} | "
+          f"{(~horizontal).mean() if len(pairs) else 0:.3f} | "
+          f"{summary['fractures_in_layer']} | {summary['wall_time_s']} |")
+
+
+def polycrystal(out: Path, reuse: bool) -> None:
+    """Table 3: intergranular share against the grain-boundary strength factor."""
+    print("\n| boundary strength | broken | intergranular share of the breaks | share of "
+          "all bonds on grain boundaries | peak sigma_xx (MPa) at e | wall time (s) |")
+    print("|---|---|---|---|---|---|")
+    for g in BOUNDARY_STRENGTHS:
+        scene, summary = run(POLYCRYSTAL.format(base=BASE, g=g), f"polycrystal-g{g:g}", out, reuse)
+        model = build_model(scene)
+        every = intergranular_fraction(lattice_bond_ids(model.lattice, True), model.grain)
+        print(f"| {g:g} | {summary['broken']} | {fmt(summary['intergranular_fraction'])} | "
+              f"{every:.3f} | {summary['peak_stress'] / 1e6:.3g} at "
+              f"{summary['peak_at_strain']:.3g} | {summary['wall_time_s']} |")
+
+
+def expanding(out: Path, reuse: bool) -> None:
+    """Table 4: radial fractures against the growth."""
+    scene, summary = run(EXPANDING, "expanding", out, reuse)
+    along = fractures_along(scene, summary["folder"])
+    print("\n| growth | " + " | ".join(f"{r['strain']:.2g}" for r in along[1::2]) + " |")
+    print("|---|" + "---|" * len(along[1::2]))
+    print("| broken | " + " | ".join(str(r["broken"]) for r in along[1::2]) + " |")
+    print("| radial fractures | " + " | ".join(str(r["radial_fractures"])
+                                              for r in along[1::2]) + " |")
+    print("| intergranular | " + " | ".join(fmt(r["intergranular_fraction"], 2)
+                                           for r in along[1::2]) + " |")
+    print(f"(wall time {summary['wall_time_s']} s)")
+
+
+def spacing_png(path: Path, series: dict) -> None:
+    """Spacing over thickness against strain, one panel per contrast, one colour per
+    thickness, one line style per seed, with the band 0.8-1.2 of Bai & Pollard (2000) at
+    saturation."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    contrasts = sorted({c for c, _, _ in series}, reverse=True)
+    fig, axes = plt.subplots(1, len(contrasts), figsize=(5.2 * len(contrasts), 5.0), dpi=130,
+                             sharex=True, sharey=True, squeeze=False)
+    colours = dict(zip(THICKNESSES, ("tab:blue", "tab:orange", "tab:green")))
+    styles = {1: "-", 2: "--", 3: ":"}
+    for ax, c in zip(axes[0], contrasts):
+        ax.axhspan(0.8, 1.2, color="0.88", label="S/T 0.8-1.2 at saturation (Bai & Pollard 2000)")
+        for (cc, seed, t), along in sorted(series.items()):
+            if cc != c:
+                continue
+            e = [r["strain"] * 1e3 for r in along if r["spacing_to_thickness"] is not None]
+            s = [r["spacing_to_thickness"] for r in along if r["spacing_to_thickness"] is not None]
+            if e:
+                e.append(along[-1]["strain"] * 1e3)
+                s.append(s[-1])
+                ax.step(e, s, where="post", color=colours[t], ls=styles.get(seed, "-."),
+                        label=f"T = {along[0]['layer_thickness'] * 1e3:.1f} mm ({t:g} of the "
+                              f"box), seed {seed}")
+        ax.set_xlabel("strain e_xx (1e-3)")
+        ax.set_xlim(0.0, None)
+        ax.set_yscale("log")
+        ax.set_title(f"stiffness contrast {c:g}", fontsize=9)
+    axes[0][0].set_ylabel("mean fracture spacing / layer thickness, L_x / n / T")
+    fig.suptitle("competent layer, layer-parallel extension, periodic box, 4200 particles, "
+                 "quasi-static", fontsize=9)
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=7, frameon=False)
+    fig.tight_layout(rect=(0.0, 0.17, 1.0, 1.0))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--out", default="scene-geology", help="folder of the runs")
+    ap.add_argument("--img", default="", help="the spacing figure (default OUT/layer_spacing.png)")
+    ap.add_argument("--reuse", action="store_true", help="keep finished runs")
+    ap.add_argument("--parts", default="1234", help="which tables (default 1234)")
+    args = ap.parse_args()
+    out = Path(args.out)
+    if "1" in args.parts:
+        series = extension(out, args.reuse)
+        spacing_png(Path(args.img) if args.img else out / "layer_spacing.png", series)
+        (out / "extension_along.json").write_text(json.dumps(
+            {f"contrast {c:g} seed {seed} thickness {t:g}": v
+             for (c, seed, t), v in series.items()}, indent=1))
+    if "2" in args.parts:
+        compression(out, args.reuse)
+    if "3" in args.parts:
+        polycrystal(out, args.reuse)
+    if "4" in args.parts:
+        expanding(out, args.reuse)
+
+
+if __name__ == "__main__":
+    main()
