@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from bonded_lattice.cli import _scene
+from bonded_lattice.cli import scene_from_args
 from bonded_lattice.cli_options import running_options, scene_options
 from bonded_lattice.fractures import intergranular_fraction
 from bonded_lattice.scene_study import SceneStudy, fractures_along
@@ -51,7 +51,7 @@ def scene_of(command: str) -> Scene:
     p = argparse.ArgumentParser()
     scene_options(p)
     running_options(p)
-    return _scene(p.parse_args(command.split()))
+    return scene_from_args(p.parse_args(command.split()))
 
 
 def run(command: str, name: str, out: Path, reuse: bool) -> tuple[Scene, dict]:

@@ -159,7 +159,9 @@ def cmd_validate(args: argparse.Namespace) -> int:
     return 0
 
 
-def _scene(args: argparse.Namespace):
+def scene_from_args(args: argparse.Namespace):
+    """The :class:`bonded_lattice.scenes.Scene` of parsed ``scene`` options (the command line's
+    meaning of them, also for scripts that print the commands they run)."""
     from .conversion import BondParameters
     from .scenes import Scene, central_spring_bond
 
@@ -212,7 +214,7 @@ def cmd_scene(args: argparse.Namespace) -> int:
     from .scene_study import run_scene
     from .scenes import expected_memory, write_scene
 
-    scene = _scene(args)
+    scene = scene_from_args(args)
     out = Path(args.out)
     if not args.run:
         info = write_scene(scene, out)
