@@ -448,14 +448,9 @@ void LatticeLocalRelax::move(int a)
     const double det = mxx * myy - mxy * mxy;
     if (!(std::fabs(det) > 0.0)) return;
     const double fx = fnet[3 * (size_t) a], fy = fnet[3 * (size_t) a + 1];
-    const double dx[2] = {omega * (myy * fx - mxy * fy) / det, omega * (mxx * fy - mxy * fx) / det};
-    double **x = atom->x;
-    for (int c = 0; c < 2; c++) {
-      disp[3 * (size_t) a + c] += dx[c];
-      x[a][c] += dx[c];
-      max_move = MAX(max_move, std::fabs(disp[3 * (size_t) a + c]));
-    }
-    moved.push_back(a);
+    const double dx[3] = {omega * (myy * fx - mxy * fy) / det, omega * (mxx * fy - mxy * fx) / det,
+                          0.0};
+    displace(a, dx, 2);
     return;
   }
   double m[3][3] = {{d[0], d[3], d[4]}, {d[3], d[1], d[5]}, {d[4], d[5], d[2]}};
@@ -483,8 +478,14 @@ void LatticeLocalRelax::move(int a)
                      t[0][1] * (t[1][0] * t[2][2] - t[1][2] * t[2][0]) +
                      t[0][2] * (t[1][0] * t[2][1] - t[1][1] * t[2][0])) / det;
   }
+  displace(a, dx, 3);
+}
+
+// particle a moves by dx (its first n components)
+void LatticeLocalRelax::displace(int a, const double *dx, int n)
+{
   double **x = atom->x;
-  for (int c = 0; c < 3; c++) {
+  for (int c = 0; c < n; c++) {
     disp[3 * (size_t) a + c] += dx[c];
     x[a][c] += dx[c];
     max_move = MAX(max_move, std::fabs(disp[3 * (size_t) a + c]));

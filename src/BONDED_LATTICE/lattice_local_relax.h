@@ -125,6 +125,7 @@ class LatticeLocalRelax : protected Pointers, public LatticeForwardPart, public 
   void enqueue(int a);
   bool free_force_above(int a) const;
   void move(int a);
+  void displace(int a, const double *dx, int n);
   void exchange_forces();
   bool better(int a, int b) const;
   void tree_update(int k);
