@@ -236,7 +236,7 @@ def layer_fractures(pairs: np.ndarray, positions: np.ndarray, layer: np.ndarray,
 
 
 def radial_fractures(pairs: np.ndarray, positions: np.ndarray, growing: np.ndarray, d: float,
-                     reach: float = REACH) -> int:
+                     reach: float = REACH, period: tuple[float, float] | None = None) -> int:
     """Number of radial fractures around growing grains (``growing``: their particles).
 
     Broken bonds inside the growing grains (both particles growing) are left out; the rest
@@ -250,7 +250,9 @@ def radial_fractures(pairs: np.ndarray, positions: np.ndarray, growing: np.ndarr
     two bonds in it).  A crack counts once when it reaches the contour, whether or not it
     branches beyond it; cracks that leave the grains separately count separately even if
     they join farther out or are joined at the boundary (by broken boundary bonds).  The
-    default 3 d leaves out the one- and two-bond breaks of a crushed boundary.
+    default 3 d leaves out the one- and two-bond breaks of a crushed boundary.  With
+    ``period`` (the (x, y) lengths of a periodic box) bonds, fractures and distances are
+    taken by minimum image, across the seam.
     """
     pos = np.asarray(positions, dtype=float)
     d = _check_d(d)
@@ -261,13 +263,14 @@ def radial_fractures(pairs: np.ndarray, positions: np.ndarray, growing: np.ndarr
     grows = _check_mask(growing, len(pos), "growing")
     if len(p) == 0:
         return 0
+    box = _check_period(period)
     p = p[~(grows[p[:, 0] - 1] & grows[p[:, 1] - 1])]
-    mid = bond_midpoints(p, pos)
-    labels = _group(mid, d)
-    dist = _distance(mid, pos[_rim(pos, grows, d), :2], (reach + BAND) * d)
+    mid = bond_midpoints(p, pos, period)
+    labels = _group(mid, d, box)
+    dist = _distance(mid, pos[_rim(pos, grows, d), :2], (reach + BAND) * d, box)
     touching = np.isin(labels, np.unique(labels[dist <= LINK * d]))
     band = touching & (dist >= reach * d) & (dist < (reach + BAND) * d)
-    return int(_group(mid[band], d).max()) + 1 if band.any() else 0
+    return int(_group(mid[band], d, box).max()) + 1 if band.any() else 0
 
 
 def _rim(positions: np.ndarray, inside: np.ndarray, d: float) -> np.ndarray:
@@ -286,9 +289,14 @@ def _rim(positions: np.ndarray, inside: np.ndarray, d: float) -> np.ndarray:
     return idx[count < 6]
 
 
-def _distance(points: np.ndarray, targets: np.ndarray, r: float) -> np.ndarray:
-    """Distance from each point (m, 2) to the nearest target (t, 2), inf beyond r."""
+def _distance(points: np.ndarray, targets: np.ndarray, r: float,
+              period: np.ndarray | None = None) -> np.ndarray:
+    """Distance from each point (m, 2) to the nearest target (t, 2), inf beyond r; with
+    ``period`` (the box lengths of a periodic box) to the nearest image of a target."""
     m = len(points)
+    if period is not None:    # the targets and their eight images
+        targets = np.vstack([targets + (sx * period[0], sy * period[1])
+                             for sx in (-1, 0, 1) for sy in (-1, 0, 1)])
     both = np.zeros((m + len(targets), 3))
     both[:m, :2] = points
     both[m:, :2] = targets

@@ -35,14 +35,14 @@ def fracture_summary(scene: Scene, model: SceneModel, pairs: np.ndarray) -> dict
     its seam, the spacing the box length over the count); polycrystals and
     expanding grains ``intergranular_fraction``; expanding grains ``radial_fractures``."""
     positions = model.lattice.positions
+    period = box_period(model.lattice) if scene.boundary == "periodic" else None
     if scene.kind.startswith("layer"):
-        period = box_period(model.lattice) if scene.boundary == "periodic" else None
         return layer_fractures(pairs, positions, model.grain == 1, scene.d, period)
     out = {"intergranular_fraction": intergranular_fraction(pairs, model.grain)}
     if scene.kind == "expanding":
         out["radial_fractures"] = radial_fractures(pairs, positions,
                                                    np.isin(model.grain, model.expanding),
-                                                   scene.d)
+                                                   scene.d, period=period)
     return out
 
 

@@ -14,7 +14,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from bonded_lattice.fractures import bond_midpoints, fracture_labels, layer_fractures
+from bonded_lattice.fractures import (bond_midpoints, fracture_labels, layer_fractures,
+                                      radial_fractures)
 from bonded_lattice.scene_study import fracture_summary, fractures_along
 from bonded_lattice.scenes import (ROW, Scene, box_lattice, box_period, build_model,
                                    lattice_bond_ids)
@@ -152,3 +153,47 @@ def test_fractures_along_the_loading_from_constructed_dumps(tmp_path):
         fractures_along(scene, empty, model)
     with pytest.raises(ValueError, match="quasistatic"):
         fractures_along(Scene("layer-extension", n_x=20, mode="dynamic"), tmp_path, model)
+
+
+def periodic_crossing(pos, bonds, period, a, b) -> np.ndarray:
+    """Bonds (at their minimum image, from id1) crossing the segment a-b or one of its images
+    shifted by the periods (a proper crossing)."""
+    p = pos[bonds[:, 0] - 1, :2]
+    sep = pos[bonds[:, 1] - 1, :2] - p
+    sep -= period * np.round(sep / period)
+    q = p + sep
+
+    def side(u, v, w):
+        return np.sign((v[..., 0] - u[..., 0]) * (w[..., 1] - u[..., 1])
+                       - (v[..., 1] - u[..., 1]) * (w[..., 0] - u[..., 0]))
+
+    hit = np.zeros(len(bonds), dtype=bool)
+    for sx in (-1, 0, 1):
+        for sy in (-1, 0, 1):
+            shift = np.array([sx * period[0], sy * period[1]])
+            u, v = np.asarray(a, float) + shift, np.asarray(b, float) + shift
+            hit |= (side(u, v, p) * side(u, v, q) < 0) & (side(p, q, u) * side(p, q, v) < 0)
+    return bonds[hit]
+
+
+@pytest.mark.parametrize("k", [3, 5])
+def test_k_radial_cracks_around_a_disc_on_the_seam(k):
+    """A growing disc centred 1.2 d from the periodic box's left face: some of its k radial
+    cracks cross the seam (and the disc itself spans it); by minimum image they are still
+    k, the short cracks (ending 1.5 d beyond the disc) none."""
+    pos, bonds, period = periodic_lattice(50, 58)
+    centre = np.array([1.45 * D, 25.1 * D])
+    rel = pos[:, :2] - centre
+    rel -= period * np.round(rel / period)
+    disc = np.hypot(rel[:, 0], rel[:, 1]) < 4.0 * D
+    angles = [np.radians(10.0) + 2 * np.pi * m / k for m in range(k)]
+
+    def rays(turn, r1):
+        return [periodic_crossing(pos, bonds, period, centre,
+                                  centre + r1 * np.array([np.cos(t + turn), np.sin(t + turn)]))
+                for t in angles]
+
+    broken = np.unique(np.vstack(rays(0.0, 14.0 * D) + rays(np.pi / k, 5.5 * D)), axis=0)
+    assert any(np.any(pos[c[:, 0] - 1, 0] > 0.5 * period[0]) for c in rays(0.0, 14.0 * D)[1:]), \
+        "some crack must lie across the seam"
+    assert radial_fractures(broken, pos, disc, D, period=period) == k
