@@ -366,27 +366,27 @@ void LatticeLocalRelax::build_colours()
    pushes)
 ------------------------------------------------------------------------- */
 
-void LatticeLocalRelax::force_only(const Spring &s, double *f) const
+double LatticeLocalRelax::force_only(const Spring &s, double *f) const
 {
   const PairSeparation d = pair_separation(atom->x, s.i, s.j);
   const double r = d.length();
   const double xn = normal_stretch(r, s.touch);
   if (!s.intact && contact_open(xn)) {
     f[0] = f[1] = f[2] = 0.0;
-    return;
+    return xn;
   }
   const double scale = -normal_force(s.kn, xn) / r;
   f[0] = scale * d.dx;
   f[1] = scale * d.dy;
   f[2] = scale * d.dz;
+  return xn;
 }
 
 double LatticeLocalRelax::spring_force(const Spring &s, double *f, BreakMode &mode) const
 {
   mode = BreakMode::None;
-  force_only(s, f);
+  const double xn = force_only(s, f);
   if (!s.intact) return -1.0;
-  const double xn = normal_stretch(pair_separation(atom->x, s.i, s.j).length(), s.touch);
   const double fn = normal_force(s.kn, xn);
   // PairLatticeBond::bond_load with no shear spring (fs = 0)
   const double tension = tensile_ratio(xn, s.xb);

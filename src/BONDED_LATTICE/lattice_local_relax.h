@@ -119,7 +119,7 @@ class LatticeLocalRelax : protected Pointers, public LatticeForwardPart, public 
   // force on the owner and ratio to the threshold (-1 if not intact) at the
   // current positions
   double spring_force(const Spring &s, double *f, BreakMode &mode) const;
-  void force_only(const Spring &s, double *f) const;
+  double force_only(const Spring &s, double *f) const;    // returns the stretch Xn
   void recompute(int k);
   void add_force(int a, const double *df);
   void enqueue(int a);
