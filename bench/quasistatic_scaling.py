@@ -21,16 +21,9 @@ import argparse
 import math
 from pathlib import Path
 
-from bonded_lattice.scene_analysis import relaxation_costs
+from bonded_lattice.scene_analysis import break_sequence, relaxation_costs
 from bonded_lattice.scene_study import SceneStudy
 from bonded_lattice.scenes import Scene
-
-def break_order(run_dir: Path) -> list[tuple[str, str]]:
-    """The broken bonds in the order they broke (breaks.txt: step, id1, id2, mode, ratio)."""
-    path = run_dir / "breaks.txt"
-    return [tuple(line.split()[1:3]) for line in path.read_text().splitlines()] \
-        if path.exists() else []
-
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
@@ -55,7 +48,7 @@ def main() -> None:
             summary = SceneStudy(scene, out, np_=args.np, pictures=False).run(reuse=args.reuse)
             c = relaxation_costs(out / "log.lammps", scene.n)
             rows.append({"n": n, "particles": scene.n, "relax": relax, **c,
-                         "wall": summary["wall_time_s"], "order": break_order(out)})
+                         "wall": summary["wall_time_s"], "order": [tuple(b) for b in break_sequence(out, source="log").tolist()]})
 
     print(f"layer-extension, {args.steps} strain steps of 2e-5, {args.np} rank(s)\n")
     print("| particles | relax | breaks | relaxations | iterations or sweeps | particle updates "
