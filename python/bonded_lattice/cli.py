@@ -1,6 +1,8 @@
-"""Command-line tool ``bonded-lattice``: convert, generate, run, envelope, calibrate.
+"""Command-line tool ``bonded-lattice``: convert, generate, run, envelope, calibrate, rocks.
 
     bonded-lattice convert --rock quartz --dim 2
+    bonded-lattice convert --rock-file my-rocks.toml --rock my-granite --dim 2
+    bonded-lattice rocks [--rock-file my-rocks.toml]
     bonded-lattice convert --dim 3 --bond 4.6794e7 8.0679e6 1.7037e-7 18.452 0.39645
     bonded-lattice generate --rock quartz --dim 2 --test tension --n 30 --out tension2d
     bonded-lattice generate --dim 2 --n 60 --grains 40 --stiffness-sd 0.2 --strength 0.5 1.5
@@ -19,14 +21,34 @@ from pathlib import Path
 import numpy as np
 
 from . import __version__
-from .cli_options import (heterogeneity_options, plan_options, running_options, scene_options,
-                          test_options)
+from .cli_options import (add, heterogeneity_options, plan_options, running_options,
+                          scene_options, test_options)
 
 
 def _rock(args: argparse.Namespace):
-    from .rocks import get_rock
+    """The rock of ``--rock`` and ``--rock-file`` (:func:`bonded_lattice.rock_file.choose_rock`)."""
+    from .cli_options import TEST_DEFAULTS
+    from .rock_file import choose_rock
 
-    return get_rock(args.rock)
+    return choose_rock(getattr(args, "rock", None), getattr(args, "rock_file", None),
+                       default=TEST_DEFAULTS["rock"])
+
+
+def cmd_rocks(args: argparse.Namespace) -> int:
+    from .rock_file import read_rock_file, rock_summary
+    from .rocks import ROCKS
+
+    file_rocks = read_rock_file(args.rock_file) if args.rock_file else {}
+    print("# values in GPa, MPa and kg/m^3 (rock files give them in SI: Pa, kg/m^3); "
+          "lattice: the dimensions that reproduce all five properties")
+    groups = [("library", sorted(ROCKS.values(), key=lambda r: r.name))]
+    if args.rock_file:
+        groups.append((str(args.rock_file), list(file_rocks.values())))
+    for where, rocks in groups:
+        for rock in rocks:
+            print(f"{rock.name} ({where})")
+            print("\n".join(rock_summary(rock)))
+    return 0
 
 
 def cmd_convert(args: argparse.Namespace) -> int:
@@ -333,6 +355,11 @@ def main(argv: list[str] | None = None) -> int:
     scene_options(p)
     running_options(p)
     p.set_defaults(func=cmd_scene)
+
+    p = sub.add_parser("rocks", help="list the rocks (the library's and, with --rock-file, "
+                       "the file's) with their values, units and sources")
+    add(p, "rock_file", None)
+    p.set_defaults(func=cmd_rocks)
 
     p = sub.add_parser("info", help="package version and plugin location")
     p.set_defaults(func=cmd_info)

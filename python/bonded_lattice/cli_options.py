@@ -1,6 +1,6 @@
 """The command line's options, declared once and shared by the subcommands of ``bonded-lattice``.
 
-Every option that more than one subcommand takes (``--rock``, ``--d``, ``--n``,
+Every option that more than one subcommand takes (``--rock``, ``--rock-file``, ``--d``, ``--n``,
 ``--crossings``, ``--damping``, ``--grains``, ``--stiffness-sd``, ``--strength``,
 ``--boundary-strength``, ``--grain-seed``, ``--atom-style``, ``--out``, ``--np``,
 ``--quiet``) has one entry in :data:`OPTIONS`: its flag, type and help.  A subcommand adds
@@ -33,7 +33,7 @@ from .scenes import BOUNDARIES, DEFORMATIONS, KINDS, MODES, RELAXATIONS, Scene
 from .schedules import DEFAULT_CROSSINGS_BY_TEST, DEFAULT_LOADING, SCHEDULE_ALIASES, SCHEDULES
 
 __all__ = ["OPTIONS", "TEST_DEFAULTS", "add", "heterogeneity_options", "plan_options",
-           "running_options", "scene_options", "test_options"]
+           "rock_options", "running_options", "scene_options", "test_options"]
 
 
 @dataclass(frozen=True)
@@ -64,7 +64,13 @@ def _loading_default(name: str) -> str:
 
 
 OPTIONS: dict[str, Option] = {
-    "rock": _option("--rock", help="rock from the library (default %(default)s)"),
+    "rock": _option("--rock", help="rock from the library or the --rock-file (default: the "
+                    "rock file's rock if it holds one, else quartz; `bonded-lattice rocks` lists "
+                    "them)"),
+    "rock_file": _option("--rock-file", metavar="PATH",
+                         help="your own rocks: a TOML or JSON file of entries with E, nu, Tu, "
+                         "Cu (Pa), mu_i, rho (kg/m^3) and source, checked like the library's "
+                         "(docs/python.md, 'Your own rocks')"),
     "d": _option("--d", type=float, help="particle diameter in m (default %(default)g)"),
     # (the subcommands give these their own help: the same option means a little more there)
     "n": _option("--n", type=int, help=""),
@@ -132,6 +138,14 @@ def _field_defaults(cls: type) -> dict[str, Any]:
     return out
 
 
+def rock_options(p: argparse.ArgumentParser, help: str | None = None) -> None:
+    """``--rock`` and ``--rock-file``; ``--rock`` defaults to None, which
+    :func:`bonded_lattice.rock_file.choose_rock` reads as the rock file's only rock or
+    :data:`TEST_DEFAULTS` ``["rock"]``."""
+    add(p, "rock", None, help=help)
+    add(p, "rock_file", None)
+
+
 def running_options(p: argparse.ArgumentParser) -> None:
     """Options of the subcommands that run LAMMPS."""
     add(p, "np", TEST_DEFAULTS["np"])
@@ -142,7 +156,7 @@ def test_options(p: argparse.ArgumentParser, test: bool = True, choose_test: boo
     """Options of the rock tests; ``test`` adds the block and its loading, ``choose_test``
     also --test and --confining."""
     lib = _keyword_defaults(run_test, plan_test)
-    add(p, "rock", TEST_DEFAULTS["rock"])
+    rock_options(p)
     p.add_argument("--dim", type=int, choices=(2, 3), default=TEST_DEFAULTS["dim"])
     add(p, "d", lib["d"])
     if test and choose_test:
@@ -295,8 +309,8 @@ def scene_options(p: argparse.ArgumentParser) -> None:
                    "(a box periodic in x and y, no walls; quasi-static only)")
     add(p, "n", s["n_x"], help="particles per row (default %(default)s)")
     add(p, "d", s["d"])
-    add(p, "rock", TEST_DEFAULTS["rock"], help="rock whose E and Tu give Kn and Xb "
-        "(default %(default)s)")
+    rock_options(p, help="rock whose E and Tu give Kn and Xb, from the library or the "
+                 "--rock-file (default: the rock file's rock if it holds one, else quartz)")
     p.add_argument("--bond", type=float, nargs=2, metavar=("Kn", "Xb"),
                    help="central-spring parameters directly (Ks = mu_p = 0)")
     for title, numbers in SCENE_NUMBERS.items():
