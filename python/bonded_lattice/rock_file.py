@@ -111,12 +111,11 @@ def rock_from_entry(name: str, entry: Any, where: str = "the rock file") -> Rock
     for key in ROCK_KEYS[:-1]:
         value = entry[key]
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise ValueError(f"rock {name!r} in {where}: {key} = {value!r} is a "
-                             f"{type(value).__name__}: need a number, {_describe(key)}")
+            raise ValueError(f"rock {name!r} in {where}: {key} = {value!r} is not a number "
+                             f"(a {type(value).__name__}): need {_describe(key)} as a number")
     if not isinstance(entry["source"], str):
-        raise ValueError(f"rock {name!r} in {where}: source = {entry['source']!r} is a "
-                         f"{type(entry['source']).__name__}: need a string naming the "
-                         f"reference of every value")
+        raise ValueError(f"rock {name!r} in {where}: source = {entry['source']!r} is not a "
+                         f"string: need the reference of every value as a string")
     values = {key: float(entry[key]) for key in ROCK_KEYS[:-1]}
     try:
         return Rock(name, source=entry["source"], **values)
