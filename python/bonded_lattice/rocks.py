@@ -9,7 +9,8 @@ properties are reproduced and ``Rock.why_not(dim)`` says why a dimension is miss
 real rocks (basalt here; many marbles and sandstones, with nu > 0.2) have no supported
 dimension; such entries are kept so that the reason is one call away.
 
-Add your own rocks with :func:`register_rock`.
+Add your own rocks with :func:`register_rock`, or from a TOML or JSON file with
+:func:`bonded_lattice.rock_file.read_rock_file` (the command line's ``--rock-file``).
 """
 
 from __future__ import annotations
