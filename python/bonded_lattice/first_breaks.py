@@ -29,7 +29,8 @@ from pathlib import Path
 import numpy as np
 
 from .io.dump import read_bond_dump
-from .scene_analysis import break_sequence, break_steps
+from .fractures import bond_midpoints
+from .scene_analysis import break_sequence, break_steps, outline_distance
 
 Box = tuple[float, float, float, float]   # x0, x1, y0, y1
 
@@ -62,13 +63,6 @@ def outline(positions: np.ndarray) -> Box:
             float(p[:, 1].max()))
 
 
-def wall_distance(points: np.ndarray, box: Box) -> np.ndarray:
-    """Distance of each point (x, y) inside ``box`` to the nearest of its four sides."""
-    p = np.asarray(points, dtype=float).reshape(-1, 2)
-    x0, x1, y0, y1 = box
-    return np.minimum.reduce([p[:, 0] - x0, x1 - p[:, 0], p[:, 1] - y0, y1 - p[:, 1]])
-
-
 def wall_share(points: np.ndarray, box: Box, band: float) -> float:
     """Share of the points closer than ``band`` to the box outline (NaN for no points)."""
     if not band > 0:
@@ -76,7 +70,8 @@ def wall_share(points: np.ndarray, box: Box, band: float) -> float:
     p = np.asarray(points, dtype=float).reshape(-1, 2)
     if len(p) == 0:
         return float("nan")
-    return float((wall_distance(p, box) < band).mean())
+    x0, x1, y0, y1 = box
+    return float((outline_distance(p, (x0, y0), (x1, y1)) < band).mean())
 
 
 def band_area_share(box: Box, band: float) -> float:
@@ -120,12 +115,15 @@ class BreakSites:
 
 
 def break_sites(run_dir: str | Path, positions: np.ndarray, d: float, k: int = 100,
-                band: float = 3.0, label: str = "", box: Box | None = None) -> BreakSites:
+                band: float = 3.0, label: str = "", box: Box | None = None,
+                period: tuple[float, float] | None = None) -> BreakSites:
     """The first ``k`` breaks of a finished run (:func:`first_breaks` of its bond dumps) and
     their share within ``band`` diameters of the box outline (``box``, default
     :func:`outline` of the positions), against the share of all bonds (from
     ``bonds.final.txt``) and of the area.  positions: the initial particle centres, ids
-    1..n (e.g. ``build_model(scene).lattice.positions``)."""
+    1..n (e.g. ``build_model(scene).lattice.positions``).  period: the box lengths (x, y)
+    of a periodic box, where a bond across the seam has its midpoint between the nearest
+    images (:func:`bonded_lattice.fractures.bond_midpoints`), at the outline."""
     if not d > 0:
         raise ValueError(f"d = {d} is out of range: need > 0")
     run_dir = Path(run_dir)
@@ -140,10 +138,10 @@ def break_sites(run_dir: str | Path, positions: np.ndarray, d: float, k: int = 1
     if len(exact) == min(k, len(dated)):    # the log of the breaks in order
         pairs = exact
         steps = np.array([dated.get((int(a), int(b)), -1) for a, b in exact], dtype=np.int64)
-    points = 0.5 * (p[pairs[:, 0] - 1] + p[pairs[:, 1] - 1])
+    points = bond_midpoints(pairs, p, period)
     rows = read_bond_dump(run_dir / "bonds.final.txt")
     bonds = rows[rows[:, 2] != 3][:, :2].astype(np.int64)   # state 3: a contact, never a bond
-    mids = 0.5 * (p[bonds[:, 0] - 1] + p[bonds[:, 1] - 1])
+    mids = bond_midpoints(bonds, p, period)
     return BreakSites(label=label or run_dir.name, k=k, points=points, steps=steps, box=box,
                       d=d, band=band * d, share=wall_share(points, box, band * d),
                       bond_share=wall_share(mids, box, band * d),

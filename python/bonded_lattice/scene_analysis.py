@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .fractures import bond_midpoints
 from .io.dump import read_bond_dump
 
 
@@ -105,26 +106,24 @@ def crack_normal_stats(angles: np.ndarray) -> dict[str, float]:
             "fraction_0": float(horizontal.mean()), "fraction_60": float((~horizontal).mean())}
 
 
+def outline_distance(points: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Distance of each point (x, y) to the nearest side of the rectangle ``lo``-``hi``
+    (x0, y0)-(x1, y1); 0 for a point outside it."""
+    q = np.asarray(points, dtype=float).reshape(-1, 2)
+    lo, hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+    return np.maximum(np.minimum(q - lo, hi - q).min(axis=1), 0.0)
+
+
 def edge_distance(pairs: np.ndarray, positions: np.ndarray,
                   period: tuple[float, float] | None = None) -> np.ndarray:
     """Distance of each bond (id1, id2) from the edges of the lattice: from its midpoint in
-    the initial lattice to the nearest of the outermost rows and columns of particle
-    centres (the wall rows; in a periodic box the rows on either side of the seam, where
-    the walls would be).  period: the box lengths (x, y) of a periodic box: a bond across
-    the seam has its midpoint between the two images, outside the rows: distance 0."""
-    pairs = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+    the initial lattice (:func:`bonded_lattice.fractures.bond_midpoints`) to the nearest of
+    the outermost rows and columns of particle centres (:func:`outline_distance`; the wall
+    rows; in a periodic box the rows on either side of the seam, where the walls would
+    be).  period: the box lengths (x, y) of a periodic box: a bond across the seam has its
+    midpoint between the two images, outside the rows: distance 0."""
     p = np.asarray(positions, dtype=float)[:, :2]
-    a, b = p[pairs[:, 0] - 1], p[pairs[:, 1] - 1]
-    sep = b - a
-    if period is not None:
-        length = np.asarray(period, dtype=float).reshape(2)
-        if not np.all(length > 0):
-            raise ValueError(f"period = {list(period)} is out of range: need two lengths > 0")
-        sep -= length * np.round(sep / length)
-    mid = a + 0.5 * sep
-    lo, hi = p.min(axis=0), p.max(axis=0)
-    dist = np.minimum(mid - lo, hi - mid).min(axis=1)
-    return np.maximum(dist, 0.0)
+    return outline_distance(bond_midpoints(pairs, p, period), p.min(axis=0), p.max(axis=0))
 
 
 def first_breaks_near_edges(run_dir: str | Path, positions: np.ndarray, bonds: np.ndarray,

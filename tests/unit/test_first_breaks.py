@@ -94,3 +94,23 @@ def test_break_sites_from_dumps(tmp_path: Path) -> None:
     assert (tmp_path / "first.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     with pytest.raises(ValueError, match="0 runs with no breaks"):
         first_breaks_png(tmp_path / "none.png", [])
+
+
+def test_break_sites_in_a_periodic_box(tmp_path: Path) -> None:
+    # box outline 10 x 4 (a row at y = 0 from x = 0 to 10, particle 14 at (5, 4)), periods
+    # (11, 9): particles 12 (0, 2) and 13 (10, 2) are neighbours across the x seam.  Their
+    # bond's midpoint is (5, 2) without the period, 2 from every side (not within band 1.5);
+    # with it (-0.5, 2), between the images, at the outline (distance 0).  (1, 2) lies on
+    # the bottom row, (6, 14) at (5, 2) either way (4 < 9 / 2: no image nearer).  Exact
+    # ratios of small integers.
+    pos = np.array([[float(x), 0.0] for x in range(11)] + [[0.0, 2.0], [10.0, 2.0], [5.0, 4.0]])
+    bonds = [(1, 2), (12, 13), (6, 14)]
+    rows = [(i, j, 1 if (i, j) == (12, 13) else 0) for i, j in bonds]
+    _dump(tmp_path / "bonds.1.txt", rows, pos)
+    _dump(tmp_path / "bonds.final.txt", rows, pos)
+    walls = break_sites(tmp_path, pos, d=0.5, k=1, band=3.0)
+    periodic = break_sites(tmp_path, pos, d=0.5, k=1, band=3.0, period=(11.0, 9.0))
+    assert walls.points.tolist() == [[5.0, 2.0]] and periodic.points.tolist() == [[-0.5, 2.0]]
+    assert (walls.share, periodic.share) == (0.0, 1.0)
+    assert walls.bond_share == pytest.approx(1.0 / 3.0, rel=1e-15)
+    assert periodic.bond_share == pytest.approx(2.0 / 3.0, rel=1e-15)
