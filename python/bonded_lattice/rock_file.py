@@ -3,16 +3,16 @@
 A rock file holds one table per rock, named by its key; each table has exactly the keys of a
 library rock (:class:`bonded_lattice.rocks.Rock`), in the library's SI units::
 
-    [my-granite]
-    E = 66.5e9        # Young's modulus, Pa
-    nu = 0.2          # Poisson's ratio
-    Tu = 6.9e6        # uniaxial tensile strength, Pa
-    Cu = 200e6        # uniaxial compressive strength, Pa
+    [my-quartz]       # the library's quartz under another name (inputs/rocks/my-quartz.toml)
+    E = 90e9          # Young's modulus, Pa
+    nu = 0.16         # Poisson's ratio
+    Tu = 25e6         # uniaxial tensile strength, Pa
+    Cu = 252e6        # uniaxial compressive strength, Pa
     mu_i = 1.0        # coefficient of internal friction
-    rho = 2638        # density, kg/m^3
-    source = "where every value comes from"
+    rho = 2650.0      # density, kg/m^3
+    source = "Liu, Pollard & Shi (2013) J. Geophys. Res. 118, 71-82, Table 1 (...)"
 
-(JSON: ``{"my-granite": {"E": 66.5e9, ...}}``.)  The entries are checked as strictly as the
+(JSON: ``{"my-quartz": {"E": 90e9, ...}}``.)  The entries are checked as strictly as the
 library's: a missing key (``source`` included) or an unknown one is an error naming it, a
 value that is not a number (``source``: not a string) is an error, and the values go through
 :class:`~bonded_lattice.rocks.Rock`'s own checks (the ValueError names the rock, the value and
@@ -58,7 +58,7 @@ def _describe(key: str) -> str:
 def _load_toml(text: str, path: Path) -> Any:
     try:
         import tomllib  # Python >= 3.11
-    except ImportError:  # pragma: no cover - only on Python 3.10
+    except ImportError:  # Python 3.10
         try:
             import tomli as tomllib  # type: ignore[no-redef]
         except ImportError:

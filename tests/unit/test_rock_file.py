@@ -8,6 +8,7 @@ Each bad file breaks one rule, and its ValueError must name what is wrong.
 from __future__ import annotations
 
 import json
+import sys
 from pathlib import Path
 
 import pytest
@@ -89,6 +90,7 @@ BAD = {
     "wrong type": ({**GOOD, "E": "90e9"}, ["E = '90e9' is not a number", "Young's modulus, Pa"]),
     "boolean": ({**GOOD, "mu_i": True}, ["mu_i = True is not a number (a bool)"]),
     "source not a string": ({**GOOD, "source": 3}, ["source = 3 is not a string"]),
+    "empty source": ({**GOOD, "source": " "}, ["source = ' '", "need a non-empty string"]),
 }
 
 
@@ -165,3 +167,14 @@ def test_cli_convert_with_rock_file(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["convert", "--rock-file",
                  str(EXAMPLES / "lac-du-bonnet-granite.toml")]) == 2
     assert "has no mu_i" in capsys.readouterr().err
+
+
+def test_toml_without_tomllib_or_tomli_says_so(tmp_path: Path,
+                                               monkeypatch: pytest.MonkeyPatch) -> None:
+    # Python 3.10 without tomli: both imports fail (None in sys.modules makes import raise
+    # ImportError); a TOML file is refused with the advice, a JSON file still loads
+    monkeypatch.setitem(sys.modules, "tomllib", None)
+    monkeypatch.setitem(sys.modules, "tomli", None)
+    with pytest.raises(ValueError, match="needs Python >= 3.11 or the tomli package"):
+        read_rock_file(EXAMPLES / "my-quartz.toml")
+    assert read_rock_file(EXAMPLES / "my-quartz.json")["my-quartz"].E == QUARTZ.E
