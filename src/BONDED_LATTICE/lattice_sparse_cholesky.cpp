@@ -657,12 +657,18 @@ void LatticeSparseCholesky::modify(const LatticeSpring &s, int sign)
   xwork_.resize(ncols_, 0.0);
   const double sq = std::sqrt(s.k);
   for (int q = 0; q < nv; ++q) xwork_[cols[q]] += sq * vals[q];
-  std::size_t maxm = 0;
-  for (int t : p) maxm = std::max(maxm, (std::size_t) tree_[t].ncol + tree_[t].nrow);
+  std::size_t maxm = 0, most = 0;
+  for (int t : p) {
+    const std::size_t m = (std::size_t) tree_[t].ncol + tree_[t].nrow;
+    maxm = std::max(maxm, m);
+    most += m * tree_[t].ncol;
+  }
   std::vector<double> v(maxm);
-  const double sg = (double) sign;
-  std::vector<std::pair<int, int>> saved;    // (tree node, first column kept in backup_)
+  // a downdate can fail part way: it keeps the old values of the column parts it
+  // changes (col[j..m) of each column it rotates) in backup_, at these factor offsets
+  std::vector<std::pair<std::size_t, std::size_t>> saved;    // (offset in factor_, length)
   std::size_t used = 0;
+  if (sign < 0 && backup_.size() < most) backup_.resize(most);
 
   for (int t : p) {
     const TreeNode &tn = tree_[t];
@@ -672,13 +678,6 @@ void LatticeSparseCholesky::modify(const LatticeSpring &s, int sign)
     int j0 = 0;
     while (j0 < n && xwork_[tn.col0 + j0] == 0.0) ++j0;
     if (j0 == n) continue;    // nothing reaches this block's columns: it stays as it is
-    if (sign < 0) {    // a downdate can fail part way: keep the columns it changes
-      const std::size_t len = (std::size_t) (n - j0) * m;
-      if (backup_.size() < used + len) backup_.resize(used + len);
-      std::copy(L + (std::size_t) j0 * m, L + (std::size_t) n * m, backup_.begin() + used);
-      saved.push_back({t, j0});
-      used += len;
-    }
     std::copy(xwork_.begin() + tn.col0, xwork_.begin() + tn.col0 + n, v.begin());
     for (int q = 0; q < tn.nrow; ++q) v[n + q] = xwork_[R[q]];
     for (int j = j0; j < n; ++j) {
@@ -686,27 +685,38 @@ void LatticeSparseCholesky::modify(const LatticeSpring &s, int sign)
       if (xj == 0.0) continue;
       double *col = L + (std::size_t) j * m;
       const double ljj = col[j];
-      const double r2 = ljj * ljj + sg * xj * xj;
+      const double r2 = ljj * ljj + (sign > 0 ? xj * xj : -(xj * xj));
       if (!(r2 > 0.0) || !std::isfinite(r2)) {
         std::fill(xwork_.begin(), xwork_.end(), 0.0);
         std::size_t o = 0;
         for (const auto &sv : saved) {
-          const TreeNode &tu = tree_[sv.first];
-          const std::size_t mu = (std::size_t) tu.ncol + tu.nrow;
-          const std::size_t len = (tu.ncol - sv.second) * mu;
-          std::copy(backup_.begin() + o, backup_.begin() + o + len,
-                    factor_.begin() + tu.block_off + sv.second * mu);
-          o += len;
+          std::copy(backup_.begin() + o, backup_.begin() + o + sv.second,
+                    factor_.begin() + sv.first);
+          o += sv.second;
         }
         pivot_error(tn.col0 + j, r2, sign > 0 ? "modify (update)" : "modify (downdate)");
       }
       const double rr = std::sqrt(r2);
-      const double c = rr / ljj, sn = xj / ljj, ic = 1.0 / c, ssn = sg * sn;
+      const double c = rr / ljj, sn = xj / ljj, ic = 1.0 / c;
       col[j] = rr;
-      for (int i = j + 1; i < m; ++i) {
-        const double l = (col[i] + ssn * v[i]) * ic;
-        col[i] = l;
-        v[i] = c * v[i] - sn * l;
+      if (sign > 0) {
+        for (int i = j + 1; i < m; ++i) {
+          const double l = (col[i] + sn * v[i]) * ic;
+          col[i] = l;
+          v[i] = c * v[i] - sn * l;
+        }
+      } else {
+        double *bk = backup_.data() + used;
+        bk[0] = ljj;
+        for (int i = j + 1; i < m; ++i) {
+          const double old = col[i];
+          bk[i - j] = old;
+          const double l = (old - sn * v[i]) * ic;
+          col[i] = l;
+          v[i] = c * v[i] - sn * l;
+        }
+        saved.push_back({tn.block_off + (std::size_t) j * m + j, (std::size_t) (m - j)});
+        used += m - j;
       }
     }
     std::fill(xwork_.begin() + tn.col0, xwork_.begin() + tn.col0 + n, 0.0);
