@@ -267,6 +267,9 @@ void check_solve(const char *tag, Net &net, int leaf, double shift, std::mt19937
   report((p + "_held_untouched").c_str(), held_untouched(net, xs) ? 1.0 : 0.0);
   report((p + "_ntree").c_str(), chol.ntree());
   report((p + "_depth").c_str(), chol.depth());
+  int roots = 0;
+  for (int t = 0; t < chol.ntree(); ++t) roots += chol.parent(t) < 0;
+  report((p + "_roots").c_str(), roots);
 }
 
 // 50 downdates and 10 updates against a fresh factorisation of the changed spring set
@@ -481,6 +484,42 @@ int main()
     random_springs(tri2, rng);
     check_modify("tri2", tri2, 8, 1e-3, rng);
     check_modify("fcc", f, 8, 1e-3, rng);
+
+    // two patches with no spring between them: the dissection's first separator is
+    // empty and the tree a forest of two
+    Net two = triangular(8, 6);
+    {
+      const Net right = triangular(8, 6);
+      const int n0 = two.nnodes;
+      for (int u = 0; u < right.nnodes; ++u) {
+        two.coords.push_back(right.coords[2 * u] + 20.0);
+        two.coords.push_back(right.coords[2 * u + 1]);
+      }
+      for (const auto &pr : right.pairs) two.pairs.push_back({pr.first + n0, pr.second + n0});
+      two.nnodes += right.nnodes;
+      two.free.assign(2 * two.nnodes, 1);
+      for (int i = 0; i < 8; ++i) {
+        two.free[2 * i] = two.free[2 * i + 1] = 0;
+        two.free[2 * (n0 + i)] = two.free[2 * (n0 + i) + 1] = 0;
+      }
+      random_springs(two, rng);
+    }
+    check_solve("two_patches", two, 8, 0.0, rng);
+
+    // no free component at all: an empty matrix, solve() a no-op
+    {
+      Net held = triangular(4, 4);
+      held.free.assign(held.free.size(), 0);
+      random_springs(held, rng);
+      LatticeSparseCholesky chol;
+      chol.analyse(2, held.nnodes, held.coords.data(), held.free, held.pairs);
+      chol.factorise(held.springs, 0.0);
+      chol.modify(held.springs[0], -1);
+      std::vector<double> x = random_rhs(held, rng);
+      chol.solve(x.data());
+      report("all_held_entries", chol.factor_entries() + chol.ncols() + chol.ntree());
+      report("all_held_untouched", held_untouched(held, x) ? 1.0 : 0.0);
+    }
 
     check_loose(tri2, 8, rng);
     check_errors(tri2, rng);

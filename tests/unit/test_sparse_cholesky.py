@@ -45,7 +45,7 @@ def check(tmp_path_factory) -> dict:
     return values
 
 
-@pytest.mark.parametrize("tag", ["tri", "tri_leaf1", "fcc"])
+@pytest.mark.parametrize("tag", ["tri", "tri_leaf1", "fcc", "two_patches"])
 def test_solve_matches_assembled_matrix(check, tag):
     # 2D triangular 10 x 12 (held rows and random held components; leaf size 16 and 1, the
     # latter a deep tree of single-node blocks) and 3D fcc of 256 nodes
@@ -55,6 +55,18 @@ def test_solve_matches_assembled_matrix(check, tag):
     assert check[f"{tag}_held_untouched"] == 1.0
     # a real separator tree, not one dense block
     assert check[f"{tag}_ntree"] > 1 and check[f"{tag}_depth"] > 1
+
+
+def test_disconnected_network_is_a_forest(check):
+    # two 8 x 6 patches with no spring between them: two separator trees, one per patch
+    assert check["two_patches_roots"] == 2
+    assert check["tri_roots"] == 1 and check["fcc_roots"] == 1
+
+
+def test_all_held(check):
+    # no free component: no columns, no tree, no entries; solve leaves every entry as it was
+    assert check["all_held_entries"] == 0.0
+    assert check["all_held_untouched"] == 1.0
 
 
 def test_leaf_size_one_dissects_further(check):
