@@ -326,15 +326,20 @@ int LatticeSparseCholesky::add_tree_node(const std::vector<int> &nodes,
 void LatticeSparseCholesky::symbolic()
 {
   const int ntree = (int) tree_.size();
-  std::vector<int> child_off(ntree + 1, 0), child(ntree > 0 ? ntree : 0);
+  child_off_.assign(ntree + 1, 0);
+  child_.assign(ntree, 0);
   for (int t = 0; t < ntree; ++t)
-    if (tree_[t].parent >= 0) ++child_off[tree_[t].parent + 1];
-  for (int t = 0; t < ntree; ++t) child_off[t + 1] += child_off[t];
+    if (tree_[t].parent >= 0) ++child_off_[tree_[t].parent + 1];
+  for (int t = 0; t < ntree; ++t) child_off_[t + 1] += child_off_[t];
   {
-    std::vector<int> fill(child_off.begin(), child_off.end() - 1);
+    std::vector<int> fill(child_off_.begin(), child_off_.end() - 1);
     for (int t = 0; t < ntree; ++t)
-      if (tree_[t].parent >= 0) child[fill[tree_[t].parent]++] = t;
+      if (tree_[t].parent >= 0) child_[fill[tree_[t].parent]++] = t;
   }
+  first_desc_.resize(ntree);
+  for (int t = 0; t < ntree; ++t)
+    first_desc_[t] = (child_off_[t + 1] > child_off_[t]) ? first_desc_[child_[child_off_[t]]] : t;
+  const std::vector<int> &child_off = child_off_, &child = child_;
   std::vector<int> mark(ncols_, -1), r;
   std::size_t block = 0;
   max_front_ = 0;
@@ -738,7 +743,8 @@ std::size_t LatticeSparseCholesky::bytes() const
 {
   return sizeof(double) * factor_.capacity() +
       sizeof(int) * (rows_.capacity() + dof_col_.capacity() + col_dof_.capacity() +
-                     col_tree_.capacity() + adj_.capacity() + adj_off_.capacity()) +
+                     col_tree_.capacity() + adj_.capacity() + adj_off_.capacity() +
+                     child_off_.capacity() + child_.capacity() + first_desc_.capacity()) +
       sizeof(TreeNode) * tree_.capacity();
 }
 

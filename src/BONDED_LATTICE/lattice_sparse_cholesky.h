@@ -122,6 +122,11 @@ class LatticeSparseCholesky {
   const int *rows(int t) const { return rows_.data() + tree_[t].rows_off; }
   // L_t: (n_t + |R_t|) x n_t, column-major, leading dimension n_t + |R_t|
   const double *block(int t) const { return factor_.data() + tree_[t].block_off; }
+  int nchildren(int t) const { return child_off_[t + 1] - child_off_[t]; }
+  int child(int t, int q) const { return child_[child_off_[t] + q]; }    // ascending in q
+  // post-order: the subtree of t is the tree nodes [first_descendant(t), t], and its
+  // columns are [col_begin(first_descendant(t)), col_end(t))
+  int first_descendant(int t) const { return first_desc_[t]; }
   int depth() const { return depth_; }    // tree nodes on the longest leaf-to-root path
   // the tree nodes whose blocks a modify() of a spring between nodes a and b
   // changes: the union of the two paths to the root, ascending
@@ -140,6 +145,7 @@ class LatticeSparseCholesky {
   std::vector<int> adj_off_, adj_;    // pattern, per node, sorted
   std::vector<TreeNode> tree_;
   std::vector<int> rows_;
+  std::vector<int> child_off_, child_, first_desc_;
   std::vector<double> factor_;
   std::size_t factor_size_ = 0, max_front_ = 0, max_stack_ = 0;
   std::vector<double> xwork_;    // modify(): the changing vector, zero between calls

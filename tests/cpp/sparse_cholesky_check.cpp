@@ -251,6 +251,42 @@ bool held_untouched(const Net &net, const std::vector<double> &x)
 
 void report(const char *name, double value) { std::printf("%s %.6e\n", name, value); }
 
+// the documented properties of the tree accessors; returns the number of violations
+int tree_violations(const LatticeSparseCholesky &chol)
+{
+  int bad = 0;
+  const int nt = chol.ntree();
+  auto is_ancestor = [&](int anc, int t) {
+    for (t = chol.parent(t); t >= 0; t = chol.parent(t))
+      if (t == anc) return true;
+    return false;
+  };
+  int next_col = 0;
+  for (int t = 0; t < nt; ++t) {
+    bad += chol.col_begin(t) != next_col;    // contiguous columns in post-order
+    next_col = chol.col_end(t);
+    bad += chol.parent(t) >= 0 && chol.parent(t) <= t;    // parents after their children
+    for (int c = chol.col_begin(t); c < chol.col_end(t); ++c) {
+      bad += chol.tree_of_col(c) != t;
+      bad += chol.col_of_dof(chol.dof_of_col(c)) != c;
+    }
+    const int *R = chol.rows(t);
+    for (int p = 0; p < chol.nrows(t); ++p) {    // R_t: sorted ancestor columns
+      bad += p > 0 && R[p] <= R[p - 1];
+      bad += !is_ancestor(chol.tree_of_col(R[p]), t);
+    }
+    for (int q = 0; q < chol.nchildren(t); ++q) bad += chol.parent(chol.child(t, q)) != t;
+    const int fd = chol.first_descendant(t);    // the subtree is [fd, t]
+    for (int u = 0; u < nt; ++u) bad += (u == t || is_ancestor(t, u)) != (u >= fd && u <= t);
+    const double *L = chol.block(t);    // the strict upper triangle of the diagonal block: 0
+    const int n = chol.col_end(t) - chol.col_begin(t), m = n + chol.nrows(t);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < j; ++i) bad += L[(std::size_t) j * m + i] != 0.0;
+  }
+  bad += next_col != chol.ncols();
+  return bad;
+}
+
 // accuracy of analyse + factorise + solve against the dense reference
 void check_solve(const char *tag, Net &net, int leaf, double shift, std::mt19937_64 &rng)
 {
@@ -267,6 +303,7 @@ void check_solve(const char *tag, Net &net, int leaf, double shift, std::mt19937
   report((p + "_held_untouched").c_str(), held_untouched(net, xs) ? 1.0 : 0.0);
   report((p + "_ntree").c_str(), chol.ntree());
   report((p + "_depth").c_str(), chol.depth());
+  report((p + "_tree_violations").c_str(), tree_violations(chol));
   int roots = 0;
   for (int t = 0; t < chol.ntree(); ++t) roots += chol.parent(t) < 0;
   report((p + "_roots").c_str(), roots);

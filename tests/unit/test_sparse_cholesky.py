@@ -55,6 +55,10 @@ def test_solve_matches_assembled_matrix(check, tag):
     assert check[f"{tag}_held_untouched"] == 1.0
     # a real separator tree, not one dense block
     assert check[f"{tag}_ntree"] > 1 and check[f"{tag}_depth"] > 1
+    # the accessors' documented properties: contiguous columns in post-order, parents after
+    # children, R_t sorted ancestor columns, children, subtrees [first_descendant(t), t],
+    # zeros above the diagonal of each block
+    assert check[f"{tag}_tree_violations"] == 0
 
 
 def test_disconnected_network_is_a_forest(check):
