@@ -212,8 +212,10 @@ def _cost(summary: dict) -> str:
     relax = summary.get("relaxation")
     if not relax:
         return f"{summary['steps']} time steps"
-    what = "sweeps" if relax["method"] == "local" else "minimiser iterations"
-    return (f"{relax['relaxations']} relaxations, {relax['iterations']} {what}, "
+    what = {"local": "sweeps", "direct": "solves"}.get(relax["method"], "minimiser iterations")
+    extra = (f", {relax.get('factorisations', 0)} factorisations"
+             if relax["method"] == "direct" else "")
+    return (f"{relax['relaxations']} relaxations, {relax['iterations']} {what}{extra}, "
             f"{relax['updates']:.3g} particle updates")
 
 

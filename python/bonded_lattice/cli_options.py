@@ -264,7 +264,7 @@ SCENE_NUMBERS = {
         "strain_step": ("--strain-step", "strain (or grain growth) per step (default "
                         "%(default)g)"),
         "ftol": ("--ftol", "relaxation tolerance, fraction of Kn Xb (default: 1e-4 with "
-                 "--relax local, 1e-3 with --relax fire)"),
+                 "--relax local or direct, 1e-3 with --relax fire)"),
         "dt_fraction": ("--dt-fraction", "dynamic: time step as a fraction of the critical "
                         "one (default %(default)s, at most 0.5)"),
     },
@@ -291,7 +291,8 @@ def relax_option(p: argparse.ArgumentParser, default: str, why: str = "") -> Non
     ``why``: the reason for a default other than the scenes' (for the help)."""
     p.add_argument("--relax", choices=RELAXATIONS, default=default,
                    help="quasistatic: relax by lattice/quasistatic relax local, where the "
-                   "forces exceed the tolerance, or by FIRE over the whole box (default "
+                   "forces exceed the tolerance, relax direct, exact linear solves with a "
+                   "sparse factor, or FIRE over the whole box (default "
                    f"{default}{': ' + why if why else ''})")
 
 

@@ -170,19 +170,21 @@ def first_breaks_near_edges(run_dir: str | Path, positions: np.ndarray, bonds: n
 # the summary line lattice/quasistatic prints at the end of every call
 RELAX_SUMMARY = re.compile(r"lattice/quasistatic: (\d+) bonds broke .*? in (\d+) relaxations "
                            r"\((\d+) (minimiser iterations|time steps|sweeps, (\d+) particle "
-                           r"moves)\)")
+                           r"moves|solves, (\d+) factorisations)\)")
 
 
 def relaxation_costs(log: str | Path, particles: int) -> dict[str, int]:
     """What the quasi-static calls of a run cost, summed over its strain steps (the summary
     lines of ``lattice/quasistatic`` in its log): bonds broken, relaxations, minimiser
-    iterations, time steps or sweeps (``iterations``), and particle updates (``updates``:
+    iterations, time steps, sweeps or solves (``iterations``), particle updates (``updates``:
     the particle moves of relax local; FIRE and damped dynamics evaluate every particle's
-    force each iteration or step, iterations x particles)."""
-    out = {"breaks": 0, "relaxations": 0, "iterations": 0, "updates": 0}
+    force each iteration or step, iterations x particles; a solve of relax direct updates
+    every particle) and the factorisations of relax direct (``factorisations``)."""
+    out = {"breaks": 0, "relaxations": 0, "iterations": 0, "updates": 0, "factorisations": 0}
     for m in RELAX_SUMMARY.finditer(Path(log).read_text()):
         out["breaks"] += int(m.group(1))
         out["relaxations"] += int(m.group(2))
         out["iterations"] += int(m.group(3))
         out["updates"] += int(m.group(5)) if m.group(5) else int(m.group(3)) * particles
+        out["factorisations"] += int(m.group(6)) if m.group(6) else 0
     return out

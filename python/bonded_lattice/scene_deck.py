@@ -175,6 +175,9 @@ def _quasistatic(scene: Scene, fb: float) -> str:
     if scene.relax == "local":
         how = "over-relaxation where the forces exceed the tolerance, relax local"
         minimizer = ""
+    elif scene.relax == "direct":
+        how = "exact linear solves with a sparse Cholesky factor, relax direct"
+        minimizer = ""
     else:
         how, minimizer = "FIRE", "min_style       fire\n"
     return f"""
@@ -209,7 +212,7 @@ def _relax(scene: Scene, fb: float) -> str:
     relax, break the worst bond, relax, ...) that writes the bond records after each of the
     first ``break_order`` breaks (``break.<n>.txt``).  No run between the calls: outside the
     command the pair style would break every bond past its threshold at once."""
-    how = "relax local quiet yes " if scene.relax == "local" else ""
+    how = f"relax {scene.relax} quiet yes " if scene.relax in ("local", "direct") else ""
     relax = (f"lattice/quasistatic ftol {scene.relax_tolerance * fb:.6g} {how}break one "
              f"maxsteps {scene.maxsteps} breaks breaks.txt")
     if not scene.break_order:

@@ -1,7 +1,7 @@
 /* ----------------------------------------------------------------------
    BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
 
-   lattice/quasistatic ftol F [relax minimize|run N|local] [omega W]
+   lattice/quasistatic ftol F [relax minimize|run N|local|direct] [omega W]
                               [maxsteps M] [break one|all] [maxbreak K] [quiet yes|no]
 
    Breaking is switched off in pair_style lattice/bond while the command
@@ -21,7 +21,10 @@
      runs of N steps until the largest force component is below ftol;
    - local: over-relaxation of the particles whose force exceeds ftol only
      (LatticeLocalRelax), so that a break costs work where it changes the
-     forces; central springs only, as minimize.
+     forces; central springs only, as minimize;
+   - direct: exact linear equilibria with a sparse Cholesky factor kept
+     from one break to the next by rank-one changes (LatticeDirectRelax),
+     passes ended by the pair style's forces; central springs only.
 ------------------------------------------------------------------------- */
 
 #include "lattice_quasistatic.h"
@@ -32,6 +35,7 @@
 #include "exceptions.h"
 #include "fix_lattice_bond_store.h"
 #include "force.h"
+#include "lattice_direct_relax.h"
 #include "lattice_local_relax.h"
 #include "input.h"
 #include "pair_lattice_bond.h"
@@ -54,7 +58,7 @@ void LatticeQuasistatic::command(int narg, char **arg)
   pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
   if (!pair) error->all(FLERR, "lattice/quasistatic requires pair_style lattice/bond");
   if (narg < 2 || strcmp(arg[0], "ftol") != 0)
-    error->all(FLERR, "lattice/quasistatic needs: ftol F [relax minimize|run N|local] [omega W] "
+    error->all(FLERR, "lattice/quasistatic needs: ftol F [relax minimize|run N|local|direct] [omega W] "
                "[maxsteps M] [break one|all] [maxbreak K] [quiet yes|no]");
   ftol = utils::numeric(FLERR, arg[1], false, lmp);
   if (!(ftol > 0.0))
@@ -66,12 +70,17 @@ void LatticeQuasistatic::command(int narg, char **arg)
     if (iarg + 1 >= narg) error->all(FLERR, "lattice/quasistatic keyword {} needs a value", key);
     const std::string value = arg[iarg + 1];
     if (key == "relax") {
+      direct = false;
       if (value == "minimize") {
         minimize = true;
         local = false;
       } else if (value == "local") {
         minimize = false;
         local = true;
+      } else if (value == "direct") {
+        minimize = false;
+        local = false;
+        direct = true;
       } else if (value == "run") {
         if (iarg + 2 >= narg)
           error->all(FLERR, "lattice/quasistatic relax run needs the steps between force checks");
@@ -83,7 +92,7 @@ void LatticeQuasistatic::command(int narg, char **arg)
                      chunk);
         iarg++;
       } else {
-        error->all(FLERR, "lattice/quasistatic relax {} is not valid: use minimize, run N or local",
+        error->all(FLERR, "lattice/quasistatic relax {} is not valid: use minimize, run N, local or direct",
                    value);
       }
     } else if (key == "omega") {
@@ -126,6 +135,8 @@ void LatticeQuasistatic::command(int narg, char **arg)
   double worst = 0.0;
   if (local) {
     run_local(broken, tension, shear, relaxations, steps, moves, worst);
+  } else if (direct) {
+    run_direct(broken, tension, shear, relaxations, steps, moves, worst);
   } else {
     while (true) {
       steps += relax();
@@ -161,6 +172,7 @@ void LatticeQuasistatic::command(int narg, char **arg)
                    "relaxations ({} {}); largest remaining ratio to the threshold {:.6g}\n",
                    broken, tension, shear, relaxations, steps,
                    local ? fmt::format("sweeps, {} particle moves", moves)
+                         : direct ? fmt::format("solves, {} factorisations", moves)
                          : (minimize ? "minimiser iterations" : "time steps"), worst);
 }
 
@@ -407,4 +419,50 @@ void LatticeQuasistatic::record_break(tagint owner, tagint partner, BreakMode mo
   if (!breaks_fp) return;
   fmt::print(breaks_fp, "{} {} {} {} {:.17g}\n", update->ntimestep, owner, partner,
              mode == BreakMode::Tension ? "tension" : "shear", ratio);
+}
+
+/* ----------------------------------------------------------------------
+   relax direct: passes of (force evaluation, and, unless no force component
+   exceeds ftol and no bond its threshold, an exact linear relaxation with
+   its breaks).  Counts solves in `solves` and factorisations in
+   `factorisations`
+------------------------------------------------------------------------- */
+
+void LatticeQuasistatic::run_direct(bigint &broken, int &tension, int &shear, bigint &relaxations,
+                                    bigint &solves, bigint &factorisations, double &worst)
+{
+  LatticeDirectRelax dr(lmp, pair);
+  dr.check_model();
+  // passes in a row that broke nothing: each is a Newton step of the linear
+  // stiffness, which converges by about the strain per pass; a hundred means
+  // the pair style's forces and the linear model disagree (e.g. contacts)
+  static constexpr int MAX_IDLE_PASSES = 100;
+  int idle = 0;
+  while (true) {
+    dr.probe_fixes();
+    command_quietly("run 0 post no");
+    const double largest = largest_force();
+    tagint owner = 0, partner = 0;
+    BreakMode mode = BreakMode::None;
+    worst = worst_bond(owner, partner, mode);
+    const bool more = !(maxbreak >= 0 && broken >= maxbreak) && worst > 1.0;
+    if (largest <= ftol && !more) break;
+    if (++idle > MAX_IDLE_PASSES) {
+      if (comm->me == 0)
+        error->warning(FLERR, "lattice/quasistatic relax direct: {} passes without a break did "
+                       "not bring the largest force component ({:.6g}) below ftol {:.6g}; stopping "
+                       "with the bonds as they are", MAX_IDLE_PASSES, largest, ftol);
+      break;
+    }
+    const auto out = dr.pass(maxbreak < 0 ? -1 : maxbreak - broken, break_all);
+    relaxations++;
+    solves += out.solves;
+    if (out.factorised) factorisations++;
+    for (const auto &b : out.breaks) {
+      record_break(b.owner, b.partner, b.mode, b.ratio);
+      broken++;
+      (b.mode == BreakMode::Tension ? tension : shear)++;
+    }
+    if (!out.breaks.empty()) idle = 0;
+  }
 }

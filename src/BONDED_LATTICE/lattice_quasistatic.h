@@ -36,6 +36,7 @@ class LatticeQuasistatic : public Command {
   double ftol = 0.0;            // force tolerance (force units): largest |f| of a particle
   bool minimize = true;         // relax by the minimiser, else by damped dynamics
   bool local = false;           // relax local: over-relaxation where forces exceed ftol
+  bool direct = false;          // relax direct: exact linear equilibria, sparse factor
   double omega = 1.95;          // relax local: over-relaxation factor, 0 < omega < 2
   bigint chunk = 100;           // relax run: steps between force checks
   bigint maxsteps = 100000;     // per relaxation: minimiser iterations or time steps
@@ -57,6 +58,10 @@ class LatticeQuasistatic : public Command {
   // relax local: relaxations and breaks until no bond exceeds its threshold
   void run_local(bigint &broken, int &tension, int &shear, bigint &relaxations, bigint &sweeps,
                  bigint &moves, double &worst);
+  // relax direct: passes of exact linear relaxation and breaks until no force
+  // exceeds ftol and no bond its threshold
+  void run_direct(bigint &broken, int &tension, int &shear, bigint &relaxations, bigint &solves,
+                  bigint &factorisations, double &worst);
   bigint break_beyond_threshold(int &tension, int &shear);
 };
 

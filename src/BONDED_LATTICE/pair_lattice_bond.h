@@ -24,6 +24,7 @@ PairStyle(lattice/bond,PairLatticeBond);
 #include "pair.h"
 
 #include <array>
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -35,6 +36,7 @@ class LatticeBondRecords;
 class LatticeHeterogeneity;
 class LatticeRotationFit;
 class LatticeTimeStep;
+struct LatticeDirectState;
 
 // The pair style keeps the settings, the coefficients, init, compute and
 // restart; its parts (each with its own file) are the records' lifecycle
@@ -125,6 +127,9 @@ class PairLatticeBond : public Pair, public LatticeCommCarrier, public LatticeEn
   using Radii = LatticeRadii;
   Radii radii() const;
   double uniform_diameter() const { return diameter; }    // keyword diameter, 0 if not given
+  // lattice/quasistatic relax direct: the network and its factor, kept (on
+  // rank 0) from one call to the next (lattice_direct_relax.h)
+  std::shared_ptr<LatticeDirectState> &direct_state() { return direct_cache; }
 
  protected:
   BondParams **params;
@@ -153,6 +158,7 @@ class PairLatticeBond : public Pair, public LatticeCommCarrier, public LatticeEn
   LatticeReversePart *reverse_part;
 
   double min_radius;                  // smallest particle radius (instability test)
+  std::shared_ptr<LatticeDirectState> direct_cache;    // see direct_state()
   double equal_radius;                // the radius if all particles have it, else 0
   double measure_radii();    // largest radius; sets min_radius, equal_radius
   // physics used by the type pairs (init_style): selects the compiled force loop

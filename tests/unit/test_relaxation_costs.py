@@ -19,10 +19,26 @@ lattice/quasistatic: 1 bonds broke (1 in tension, 0 in shear) in 2 relaxations (
 def test_relax_local_moves_are_summed(tmp_path):
     (tmp_path / "log.lammps").write_text(LOG)
     assert relaxation_costs(tmp_path / "log.lammps", 4200) == {
-        "breaks": 73, "relaxations": 77, "iterations": 12759, "updates": 481559 + 29620913}
+        "breaks": 73, "relaxations": 77, "iterations": 12759, "updates": 481559 + 29620913,
+        "factorisations": 0}
 
 
 def test_minimiser_iterations_and_time_steps_evaluate_every_particle(tmp_path):
     (tmp_path / "log.lammps").write_text(FIRE)
     assert relaxation_costs(tmp_path / "log.lammps", 100) == {
-        "breaks": 6, "relaxations": 8, "iterations": 1268, "updates": 1268 * 100}
+        "breaks": 6, "relaxations": 8, "iterations": 1268, "updates": 1268 * 100,
+        "factorisations": 0}
+
+
+DIRECT = """\
+lattice/quasistatic: 0 bonds broke (0 in tension, 0 in shear) in 2 relaxations (3 solves, 1 factorisations); largest remaining ratio to the threshold 0.43
+lattice/quasistatic: 12 bonds broke (12 in tension, 0 in shear) in 3 relaxations (15 solves, 0 factorisations); largest remaining ratio to the threshold 0.97
+"""
+
+
+def test_relax_direct_solves_update_every_particle(tmp_path):
+    (tmp_path / "log.lammps").write_text(DIRECT)
+    # a solve gives every particle its displacement: solves x particles updates
+    assert relaxation_costs(tmp_path / "log.lammps", 100) == {
+        "breaks": 12, "relaxations": 5, "iterations": 18, "updates": 18 * 100,
+        "factorisations": 1}

@@ -1,6 +1,6 @@
 """Command lattice/quasistatic on a chain worked out by hand, and on a heterogeneous block on
-1 and 2 ranks; each with the minimiser (FIRE, LAMMPS' own) and with relax local, which must
-break the same bonds in the same order.
+1 and 2 ranks; each with the minimiser (FIRE, LAMMPS' own), with relax local and with relax
+direct, which must break the same bonds in the same order.
 
 The chain: four particles 1-2-3-4 in a row (types 1-4), bonds 1-2, 2-3, 3-4 with the same Kn
 and breaking stretches Xb = (1, 1.05, 2) X0. Particle 1 is held, particle 4 is moved by u and
@@ -73,8 +73,9 @@ def chain_states(lmp) -> list[int]:
     return [s[bond][0] for bond in CHAIN]
 
 
-# the relaxations: the minimiser, and relax local (over-relaxation)
-RELAX = ["", " relax local"]
+# the relaxations: the minimiser, relax local (over-relaxation) and relax direct (sparse
+# Cholesky factor)
+RELAX = ["", " relax local", " relax direct"]
 
 
 @pytest.mark.parametrize("relax", RELAX)
@@ -141,9 +142,10 @@ def test_minimize_with_shear_springs_is_refused(tmp_path):
     ("tol 1", r"lattice/quasistatic needs: ftol F"),
     ("ftol 1 break some", r"break some is not valid: use one or all"),
     ("ftol 1 relax run 0", r"relax run 0 is out of range: need >= 1 step"),
-    ("ftol 1 relax fire", r"relax fire is not valid: use minimize, run N or local"),
+    ("ftol 1 relax fire", r"relax fire is not valid: use minimize, run N, local or direct"),
     ("ftol 1 relax local omega 2", r"omega 2 is out of range: need 0 < omega < 2"),
     ("ftol 1 relax local", r"relax local needs bonds without shear springs"),
+    ("ftol 1 relax direct", r"relax direct needs bonds without shear springs"),
     ("ftol 1 maxsteps 0", r"maxsteps 0 is out of range"),
     ("ftol 1 colour red", r"Unknown lattice/quasistatic keyword colour"),
 ])
@@ -202,28 +204,33 @@ def test_quasistatic_block_breaks_the_same_bonds_on_one_and_two_ranks(tmp_path, 
     assert o1 == o2
 
 
-def test_relax_local_breaks_what_the_minimiser_breaks_in_its_order(tmp_path):
-    """LAMMPS' FIRE minimiser is the reference: relax local must find the same equilibria to
-    the resolution that decides the order of the breaks (both at ftol 1e-7 of Kn Xb here)."""
+@pytest.mark.parametrize("relax", [" relax local", " relax direct"])
+def test_relax_local_and_direct_break_what_the_minimiser_breaks_in_its_order(tmp_path, relax):
+    """LAMMPS' FIRE minimiser is the reference: relax local and relax direct must find the
+    same equilibria to the resolution that decides the order of the breaks (ftol 1e-7 of
+    Kn Xb here)."""
     counts, table, order = quasistatic_block(tmp_path / "fire", 1, "")
-    local = quasistatic_block(tmp_path / "local", 1, " relax local")
+    other = quasistatic_block(tmp_path / "other", 1, relax)
     assert sum(counts) > 5, "the test must break bonds"
-    assert local[0] == counts
-    np.testing.assert_array_equal(local[1], table)
-    assert local[2] == order
+    assert other[0] == counts
+    np.testing.assert_array_equal(other[1], table)
+    assert other[2] == order
 
 
-# relax local treats fix setforce holding components at 0.0; other forces it does not see
+# relax local and direct treat fix setforce holding components at 0.0; other forces they do
+# not see
 @pytest.mark.parametrize("fix, message", [
     ("fix push top addforce 1.0 0 0", r"cannot include the forces of fix push \(style addforce\)"),
     ("fix push top setforce 1.0 NULL NULL", r"fix push \(style setforce\) sets force component x"),
 ])
-def test_relax_local_refuses_forces_it_cannot_hold(tmp_path, fix, message):
-    deck = QS_BLOCK.format(relax=" relax local").replace("fix             hold ends setforce 0 0 0",
+@pytest.mark.parametrize("relax", ["local", "direct"])
+def test_relax_local_and_direct_refuse_forces_they_cannot_hold(tmp_path, fix, message, relax):
+    deck = QS_BLOCK.format(relax=f" relax {relax}").replace("fix             hold ends setforce 0 0 0",
                                                          "fix             hold ends setforce 0 0 0\n" + fix)
     result = run_deck(deck, tmp_path)
     assert result.returncode != 0
     assert re.search(message, result.output), result.output[-1500:]
+    assert f"relax {relax}" in result.output
 
 
 # three particles in a row, bonds 1-2 and 2-3 of Ks = 0 and Xb = X0
@@ -264,13 +271,15 @@ def test_an_error_in_a_quiet_relaxation_is_printed(tmp_path):
                      r"minimize", result.output), result.output[-1500:]
 
 
-def test_relax_local_continues_from_a_restart_file_as_without(tmp_path):
+@pytest.mark.parametrize("relax", [" relax local", " relax direct"])
+def test_relax_local_and_direct_continue_from_a_restart_file_as_without(tmp_path, relax):
     """Three loading steps, a restart file, three more read back: the same breaks in the same
     order as six steps in one run (the bonds' states and the grains' properties are in the
-    restart file; relax local keeps nothing between calls)."""
+    restart file; relax local keeps nothing between calls, relax direct a factor that the
+    restarted run makes anew)."""
     whole = tmp_path / "whole"
-    counts, table, order = quasistatic_block(whole, 1, " relax local")
-    deck = QS_BLOCK.format(relax=" relax local")
+    counts, table, order = quasistatic_block(whole, 1, relax)
+    deck = QS_BLOCK.format(relax=relax)
     head, loop = deck.split("variable        k loop 6\n")
     loop, tail = loop.split("jump            SELF loop\n")
     loop = "variable        k loop 3\n" + loop + "jump            SELF loop\n"
@@ -328,13 +337,14 @@ jump            SELF loop
 """
 
 
-def test_relax_local_in_3d_breaks_what_the_minimiser_breaks_in_its_order(tmp_path):
-    """The 3x3 stiffness blocks of the fcc lattice: relax local against FIRE (both at 1e-7 of
-    Kn Xb) and on 2 ranks."""
+def test_relax_local_and_direct_in_3d_break_what_the_minimiser_breaks_in_its_order(tmp_path):
+    """The 3x3 stiffness blocks of the fcc lattice: relax local and relax direct against FIRE
+    (all at 1e-7 of Kn Xb), each also on 2 ranks."""
     step = 5.0 * QUARTZ[3].Xb    # about 17 layers: 1.2 Xb per layer after 4 steps
     orders = {}
     for name, relax, np_ in (("fire", "", 1), ("local", " relax local", 1),
-                             ("local2", " relax local", 2)):
+                             ("local2", " relax local", 2), ("direct", " relax direct", 1),
+                             ("direct2", " relax direct", 2)):
         work = tmp_path / name
         result = run_deck(QS_BLOCK_3D.format(step=step, relax=relax), work, np=np_)
         assert result.returncode == 0, result.output[-2000:]
@@ -342,3 +352,5 @@ def test_relax_local_in_3d_breaks_what_the_minimiser_breaks_in_its_order(tmp_pat
     assert len(orders["fire"]) > 5, "the test must break bonds"
     assert orders["local"] == orders["fire"]
     assert orders["local2"] == orders["fire"]
+    assert orders["direct"] == orders["fire"]
+    assert orders["direct2"] == orders["fire"]
