@@ -37,22 +37,21 @@ using namespace LAMMPS_NS::LatticeBondPhysics;
 // Kn (about 1e-6 for 1000 particles between the walls): far below the
 // tolerance, and the next pass's right-hand side is the pair style's force
 static constexpr double SHIFT = 1.0e-12;
-// a kept factor is made anew when a spring's direction has turned by more
-// than this (radians) since it was made: the linear model's error in a
-// ratio change is about this fraction of the change
-static constexpr double MAX_TURN = 1.0e-4;
-// more changed springs than this fraction of all makes a new factor cheaper
-// than one update each
-static constexpr double REFACTOR_FRACTION = 0.02;
-// rounds of contacts closing and opening after one solve before giving up
-static constexpr int MAX_CONTACT_ROUNDS = 100;
+// a kept factor is made anew at a pass's start when a spring's direction has
+// turned by more than this (radians) since it was made: a Newton step with
+// the factor then leaves about this fraction of the force it removes
+static constexpr double MAX_TURN = 1.0e-3;
+// Newton steps of one equilibrium: after NEWTON_REFRESH the factor is made
+// anew at the current directions, after NEWTON_MAX the pass ends
+static constexpr int NEWTON_REFRESH = 6;
+static constexpr int NEWTON_MAX = 30;
 
-// values sent per atom (tag apart): x, f (dim each), held bits
-// values per record: the owner-to-partner vector (3), r, touch, kn, xb, fs0, mu_p, intact
+// values sent per atom (tag apart): x (dim), held bits
+// values per record: the owner-to-partner vector (3), r, touch, kn, xb, fs0, mu_p, intact, 0
 static constexpr int RECORD_VALUES = 11;
 
-LatticeDirectRelax::LatticeDirectRelax(LAMMPS *lmp, PairLatticeBond *pair_in) :
-    Pointers(lmp), pair(pair_in)
+LatticeDirectRelax::LatticeDirectRelax(LAMMPS *lmp, PairLatticeBond *pair_in, double ftol_in) :
+    Pointers(lmp), pair(pair_in), ftol(ftol_in)
 {
 }
 
@@ -92,18 +91,17 @@ void LatticeDirectRelax::gather(Network &net)
   const int dim = domain->dimension;
   const int nlocal = atom->nlocal, nprocs = comm->nprocs;
   const tagint *tag = atom->tag;
-  double **x = atom->x, **f = atom->f;
+  double **x = atom->x;
 
   std::unordered_map<tagint, int> held;
   for (size_t e = 0; e + 1 < held_ids.size(); e += 2) held[held_ids[e]] |= (int) held_ids[e + 1];
 
   std::vector<tagint> atom_tags(nlocal);
   std::vector<double> atom_values;
-  atom_values.reserve((size_t) nlocal * (2 * dim + 1));
+  atom_values.reserve((size_t) nlocal * (dim + 1));
   for (int i = 0; i < nlocal; i++) {
     atom_tags[i] = tag[i];
     for (int c = 0; c < dim; c++) atom_values.push_back(x[i][c]);
-    for (int c = 0; c < dim; c++) atom_values.push_back(f[i][c]);
     const auto it = held.find(tag[i]);
     atom_values.push_back(it == held.end() ? 0.0 : (double) it->second);
   }
@@ -143,22 +141,19 @@ void LatticeDirectRelax::gather(Network &net)
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return all_tags[a] < all_tags[b]; });
   net.tags.resize(natoms);
   net.coords.assign(natoms * dim, 0.0);
-  net.force.assign(natoms * dim, 0.0);
   net.free.assign(natoms * dim, 1);
   std::unordered_map<tagint, int> node;
   node.reserve(natoms);
-  const size_t per_atom = 2 * dim + 1;
+  const size_t per_atom = dim + 1;
   for (size_t n = 0; n < natoms; n++) {
     const size_t g = order[n];
     net.tags[n] = all_tags[g];
     node[all_tags[g]] = (int) n;
     const double *v = &all_values[g * per_atom];
-    const int bits = (int) v[2 * dim];
+    const int bits = (int) v[dim];
     for (int c = 0; c < dim; c++) {
       net.coords[n * dim + c] = v[c];
-      const bool fixed = bits & (1 << c);
-      net.free[n * dim + c] = fixed ? 0 : 1;
-      net.force[n * dim + c] = fixed ? 0.0 : v[dim + c];
+      net.free[n * dim + c] = (bits & (1 << c)) ? 0 : 1;
     }
   }
 
@@ -179,31 +174,30 @@ void LatticeDirectRelax::gather(Network &net)
     Spring &s = net.springs[k];
     s.a = node.at(owner);
     s.b = node.at(partner);
-    const double r = v[3];
-    for (int c = 0; c < 3; c++) s.n[c] = (r > 0.0) ? v[c] / r : 0.0;
-    s.e0 = normal_stretch(r, v[4]);
+    for (int c = 0; c < 3; c++) s.d[c] = v[c];
+    s.touch = v[4];
     s.kn = v[5];
     s.xb = v[6];
     s.fs0 = v[7];
     s.mu_p = v[8];
     s.intact = v[9] != 0.0;
-    s.active = s.intact || !contact_open(s.e0);
-    s.e = s.e0;
+    s.e = normal_stretch(v[3], s.touch);
     net.keys[k] = {owner, partner};
   }
 }
 
 /* ----------------------------------------------------------------------
-   a spring as a term of the matrix, and its ratio to the threshold
+   a spring as a term of the factor (its direction in the factor), and its
+   ratio to the threshold at its stretch
 ------------------------------------------------------------------------- */
 
-LatticeSpring LatticeDirectRelax::term(const Spring &s) const
+LatticeSpring LatticeDirectRelax::term(const LatticeDirectState &state, int k) const
 {
   LatticeSpring t;
-  t.a = s.a;
-  t.b = s.b;
-  t.k = s.kn;
-  for (int c = 0; c < 3; c++) t.n[c] = s.n[c];
+  t.a = state.ends[k].first;
+  t.b = state.ends[k].second;
+  t.k = state.kn[k];
+  for (int c = 0; c < 3; c++) t.n[c] = state.n[3 * (size_t) k + c];
   return t;
 }
 
@@ -216,152 +210,166 @@ double LatticeDirectRelax::ratio(const Spring &s, BreakMode &mode) const
   return MAX(tension, shear);
 }
 
-void LatticeDirectRelax::stretches(Network &net, const std::vector<double> &u) const
+/* ----------------------------------------------------------------------
+   the springs' stretches and the forces on the free components at the
+   displacements u: the force loop's for Ks = 0 (an intact bond pulls and
+   pushes, a broken one or a contact only pushes); returns the largest
+   free force component
+------------------------------------------------------------------------- */
+
+double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
+                                  std::vector<double> &f) const
 {
   const int dim = net.dim;
+  f.assign(u.size(), 0.0);
   for (Spring &s : net.springs) {
-    double e = s.e0;
-    for (int c = 0; c < dim; c++) e += s.n[c] * (u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c]);
-    s.e = e;
+    double d[3] = {s.d[0], s.d[1], s.d[2]};
+    for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+    const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    s.e = normal_stretch(r, s.touch);
+    if (!s.intact && contact_open(s.e)) continue;
+    // on the owner along the owner-to-partner vector, tension positive
+    const double scale = normal_force(s.kn, s.e) / r;
+    for (int c = 0; c < dim; c++) {
+      f[(size_t) s.a * dim + c] += scale * d[c];
+      f[(size_t) s.b * dim + c] -= scale * d[c];
+    }
   }
+  double largest = 0.0;
+  for (size_t q = 0; q < f.size(); q++) {
+    if (!net.free[q]) f[q] = 0.0;
+    largest = MAX(largest, std::fabs(f[q]));
+  }
+  return largest;
 }
 
 /* ----------------------------------------------------------------------
-   the factor of the active springs: the kept one, brought up to date by
-   rank-one changes, if it is of the same atoms, records and stiffness and
-   no spring has turned by more than MAX_TURN; else a new one
+   the factor of the springs that carry force: the kept one if it is of the
+   same atoms, records and stiffness and no spring has turned by more than
+   MAX_TURN since it was made; else a new one (a new ordering only if the
+   atoms or records changed)
 ------------------------------------------------------------------------- */
 
-bool LatticeDirectRelax::prepare_factor(Network &net, LatticeDirectState &state, bigint &solves)
+void LatticeDirectRelax::prepare_factor(Network &net, LatticeDirectState &state,
+                                        const std::vector<double> &u, Outcome &out)
 {
-  (void) solves;
   const size_t ns = net.springs.size();
-  bool same = state.dim == net.dim && state.tags == net.tags && state.keys == net.keys &&
-      state.free == net.free && state.kn.size() == ns;
-  std::vector<int> changed;
-  if (same) {
-    for (size_t k = 0; k < ns && same; k++) {
-      const Spring &s = net.springs[k];
-      if (state.kn[k] != s.kn) same = false;
-      double turn = 0.0;
-      for (int c = 0; c < 3; c++) turn += (s.n[c] - state.n[3 * k + c]) * (s.n[c] - state.n[3 * k + c]);
-      if (turn > MAX_TURN * MAX_TURN) same = false;
-      if ((state.in_factor[k] != 0) != s.active) changed.push_back((int) k);
+  const bool pattern = state.dim == net.dim && state.tags == net.tags && state.keys == net.keys &&
+      state.free == net.free;
+  bool keep = pattern && state.factor.factorised();
+  for (size_t k = 0; k < ns && keep; k++) {
+    const Spring &s = net.springs[k];
+    if (state.kn[k] != s.kn) keep = false;
+    double turn = 0.0, r = 0.0;
+    for (int c = 0; c < 3; c++) r += s.d[c] * s.d[c];
+    r = std::sqrt(r);
+    for (int c = 0; c < 3; c++) {
+      const double dn = s.d[c] / r - state.n[3 * k + c];
+      turn += dn * dn;
     }
-    if (changed.size() > REFACTOR_FRACTION * (double) ns) same = false;
+    if (turn > MAX_TURN * MAX_TURN) keep = false;
   }
-  if (same) {
-    // the linear model of the pass is the factor's: its directions, so that each solve is
-    // exact for the model; the model differs from the tangent at the pass's start by less
-    // than MAX_TURN of a displacement, and the next pass starts from the pair style's forces
-    for (size_t k = 0; k < ns; k++)
-      for (int c = 0; c < 3; c++) net.springs[k].n[c] = state.n[3 * k + c];
-    for (const int k : changed) {
-      const Spring &s = net.springs[k];
-      state.factor.modify(term(s), s.active ? 1 : -1);
-      state.in_factor[k] = s.active ? 1 : 0;
-    }
-    return false;
+  if (keep) return;
+  if (!pattern) {
+    state.dim = net.dim;
+    state.tags = net.tags;
+    state.keys = net.keys;
+    state.free = net.free;
+    state.ends.resize(ns);
+    std::vector<std::pair<int, int>> pairs(ns);
+    for (size_t k = 0; k < ns; k++) pairs[k] = state.ends[k] = {net.springs[k].a, net.springs[k].b};
+    state.factor.analyse(net.dim, (int) net.tags.size(), net.coords.data(), net.free, pairs);
+    out.analysed = true;
   }
+  factorise(net, state, u);
+  out.factorised++;
+}
 
-  state.dim = net.dim;
-  state.tags = net.tags;
-  state.keys = net.keys;
-  state.free = net.free;
+// a new factor of the springs that carry force at the displacements u, with
+// their directions there
+void LatticeDirectRelax::factorise(Network &net, LatticeDirectState &state,
+                                   const std::vector<double> &u)
+{
+  const int dim = net.dim;
+  const size_t ns = net.springs.size();
   state.kn.resize(ns);
   state.n.resize(3 * ns);
-  state.in_factor.resize(ns);
-  std::vector<std::pair<int, int>> pairs(ns);
+  state.in_factor.assign(ns, 0);
   std::vector<LatticeSpring> active;
   double mean = 0.0;
   for (size_t k = 0; k < ns; k++) {
     const Spring &s = net.springs[k];
-    pairs[k] = {s.a, s.b};
+    double d[3] = {s.d[0], s.d[1], s.d[2]};
+    for (int c = 0; c < dim && !u.empty(); c++)
+      d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+    const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     state.kn[k] = s.kn;
-    for (int c = 0; c < 3; c++) state.n[3 * k + c] = s.n[c];
-    state.in_factor[k] = s.active ? 1 : 0;
-    if (s.active) active.push_back(term(s));
+    for (int c = 0; c < 3; c++) state.n[3 * k + c] = (r > 0.0) ? d[c] / r : 0.0;
     mean += s.kn;
+    if (s.intact || !contact_open(s.e)) {
+      state.in_factor[k] = 1;
+      active.push_back(term(state, (int) k));
+    }
   }
   mean = ns ? mean / (double) ns : 1.0;
   state.shift = SHIFT * mean;
-  state.factor.analyse(net.dim, (int) net.tags.size(), net.coords.data(), net.free, pairs);
   state.factor.factorise(active, state.shift);
   state.factorisations++;
-  return true;
 }
 
 /* ----------------------------------------------------------------------
-   u += K^-1 (the force the changed springs now add): a spring that left the
-   factor no longer pulls (+Kn e g), one that joined pushes (-Kn e g)
+   Newton steps with the factor until no free force component exceeds ftol:
+   the springs that carry force join or leave the factor first (rank-one
+   changes); after NEWTON_REFRESH steps the factor is made anew at the
+   current directions.  false if NEWTON_MAX steps did not get there
 ------------------------------------------------------------------------- */
 
-void LatticeDirectRelax::solve_released(Network &net, LatticeDirectState &state,
-                                        std::vector<double> &u, const std::vector<int> &changed,
-                                        bigint &solves)
+bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
+                                     std::vector<double> &u, Outcome &out)
 {
-  const int dim = net.dim;
-  std::vector<double> rhs(u.size(), 0.0);
-  for (const int k : changed) {
-    const Spring &s = net.springs[k];
-    const double sign = s.active ? -1.0 : 1.0;
-    const double f = sign * normal_force(s.kn, s.e);
-    for (int c = 0; c < dim; c++) {
-      rhs[(size_t) s.a * dim + c] -= f * s.n[c];
-      rhs[(size_t) s.b * dim + c] += f * s.n[c];
-    }
-  }
-  for (size_t d = 0; d < rhs.size(); d++)
-    if (!net.free[d]) rhs[d] = 0.0;
-  state.factor.solve(rhs.data());
-  solves++;
-  for (size_t d = 0; d < rhs.size(); d++)
-    if (net.free[d]) u[d] += rhs[d];
-  stretches(net, u);
-}
-
-bool LatticeDirectRelax::settle_contacts(Network &net, LatticeDirectState &state,
-                                         std::vector<double> &u, bigint &solves)
-{
-  bool any = false;
-  for (int round = 0; round < MAX_CONTACT_ROUNDS; round++) {
-    std::vector<int> changed;
+  std::vector<double> f;
+  for (int step = 0; step <= NEWTON_MAX; step++) {
+    const double largest = forces(net, u, f);
+    int changed = 0;
     for (size_t k = 0; k < net.springs.size(); k++) {
-      Spring &s = net.springs[k];
-      if (s.intact) continue;
-      const bool closed = !contact_open(s.e);
-      if (closed == s.active) continue;
-      s.active = closed;
-      state.factor.modify(term(s), closed ? 1 : -1);
-      state.in_factor[k] = closed ? 1 : 0;
-      changed.push_back((int) k);
+      const Spring &s = net.springs[k];
+      const bool carries = s.intact || !contact_open(s.e);
+      if (carries == (state.in_factor[k] != 0)) continue;
+      state.factor.modify(term(state, (int) k), carries ? 1 : -1);
+      state.in_factor[k] = carries ? 1 : 0;
+      changed++;
     }
-    if (changed.empty()) return any;
-    any = true;
-    solve_released(net, state, u, changed, solves);
+    out.changes += changed;
+    if (largest <= ftol) return true;
+    if (step == NEWTON_MAX) break;
+    if (step == NEWTON_REFRESH) {
+      factorise(net, state, u);
+      out.factorised++;
+    }
+    state.factor.solve(f.data());
+    out.solves++;
+    for (size_t q = 0; q < u.size(); q++)
+      if (net.free[q]) u[q] += f[q];
   }
-  error->warning(FLERR, "lattice/quasistatic relax direct: contacts still closing and opening after "
-                 "{} solves; the next pass goes on from the pair style's forces", MAX_CONTACT_ROUNDS);
-  return any;
+  return false;
 }
 
 /* ----------------------------------------------------------------------
-   the seed's loop in the linear model (rank 0)
+   the seed's loop on rank 0: equilibrium, break the intact spring with the
+   largest ratio (ties: the lowest IDs), equilibrium, ...
 ------------------------------------------------------------------------- */
 
 void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std::vector<double> &u,
                                     bigint maxbreak, bool break_all, Outcome &out)
 {
-  u = net.force;
-  state.factor.solve(u.data());
-  out.solves++;
-  for (size_t d = 0; d < u.size(); d++)
-    if (!net.free[d]) u[d] = 0.0;
-  stretches(net, u);
-  settle_contacts(net, state, u, out.solves);
-
+  u.assign(net.free.size(), 0.0);
+  prepare_factor(net, state, u, out);
+  if (!equilibrate(net, state, u, out)) {
+    out.relinearise = true;
+    return;
+  }
   while (maxbreak < 0 || (bigint) out.breaks.size() < maxbreak) {
-    // the intact spring with the largest ratio; ties: the lowest IDs (springs are in ID order)
+    // the springs are in ID order: the first of the largest ratio has the lowest IDs
     int worst = -1;
     double best = 0.0;
     BreakMode best_mode = BreakMode::None;
@@ -377,17 +385,9 @@ void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std
       }
     }
     if (worst < 0 || !(best > 1.0)) break;
-    std::vector<int> changed;
     auto take = [&](int k, BreakMode m, double r) {
-      Spring &s = net.springs[k];
-      s.intact = false;
+      net.springs[k].intact = false;
       out.breaks.push_back({net.keys[k].first, net.keys[k].second, m, r});
-      if (s.active && contact_open(s.e)) {
-        s.active = false;
-        state.factor.modify(term(s), -1);
-        state.in_factor[k] = 0;
-        changed.push_back(k);
-      }
     };
     if (break_all) {
       for (size_t k = 0; k < net.springs.size(); k++) {
@@ -399,8 +399,10 @@ void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std
     } else {
       take(worst, best_mode, best);
     }
-    if (!changed.empty()) solve_released(net, state, u, changed, out.solves);
-    settle_contacts(net, state, u, out.solves);
+    if (!equilibrate(net, state, u, out)) {
+      out.relinearise = true;
+      return;
+    }
   }
 }
 
@@ -420,7 +422,6 @@ LatticeDirectRelax::Outcome LatticeDirectRelax::pass(bigint maxbreak, bool break
     auto &state = pair->direct_state();
     if (!state) state = std::make_shared<LatticeDirectState>();
     try {
-      out.factorised = prepare_factor(net, *state, out.solves);
       break_loop(net, *state, u, maxbreak, break_all, out);
     } catch (std::exception &e) {
       failure = e.what();
@@ -452,10 +453,11 @@ LatticeDirectRelax::Outcome LatticeDirectRelax::pass(bigint maxbreak, bool break
   }
   MPI_Bcast(ids.data(), (int) (2 * nbreaks), MPI_LMP_TAGINT, 0, world);
   MPI_Bcast(info.data(), (int) (2 * nbreaks), MPI_DOUBLE, 0, world);
-  MPI_Bcast(&out.solves, 1, MPI_LMP_BIGINT, 0, world);
-  int factorised = out.factorised ? 1 : 0;
-  MPI_Bcast(&factorised, 1, MPI_INT, 0, world);
-  out.factorised = factorised != 0;
+  bigint counts[3] = {out.solves, out.changes, out.factorised};
+  MPI_Bcast(counts, 3, MPI_LMP_BIGINT, 0, world);
+  out.solves = counts[0];
+  out.changes = counts[1];
+  out.factorised = counts[2];
   out.breaks.resize(nbreaks);
   for (bigint b = 0; b < nbreaks; b++)
     out.breaks[b] = {ids[2 * b], ids[2 * b + 1], static_cast<BreakMode>((int) info[2 * b]),

@@ -431,7 +431,7 @@ void LatticeQuasistatic::record_break(tagint owner, tagint partner, BreakMode mo
 void LatticeQuasistatic::run_direct(bigint &broken, int &tension, int &shear, bigint &relaxations,
                                     bigint &solves, bigint &factorisations, double &worst)
 {
-  LatticeDirectRelax dr(lmp, pair);
+  LatticeDirectRelax dr(lmp, pair, ftol);
   dr.check_model();
   // passes in a row that broke nothing: each is a Newton step of the linear
   // stiffness, which converges by about the strain per pass; a hundred means
@@ -457,7 +457,7 @@ void LatticeQuasistatic::run_direct(bigint &broken, int &tension, int &shear, bi
     const auto out = dr.pass(maxbreak < 0 ? -1 : maxbreak - broken, break_all);
     relaxations++;
     solves += out.solves;
-    if (out.factorised) factorisations++;
+    factorisations += out.factorised;
     for (const auto &b : out.breaks) {
       record_break(b.owner, b.partner, b.mode, b.ratio);
       broken++;
