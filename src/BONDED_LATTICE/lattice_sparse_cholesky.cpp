@@ -705,6 +705,7 @@ void LatticeSparseCholesky::modify(const LatticeSpring &s, int sign)
                     factor_.begin() + sv.first);
           o += sv.second;
         }
+        if (sign > 0) factorised_ = false;    // only an overflow: the columns before are changed
         pivot_error(tn.col0 + j, r2, sign > 0 ? "modify (update)" : "modify (downdate)");
       }
       const double rr = std::sqrt(r2);

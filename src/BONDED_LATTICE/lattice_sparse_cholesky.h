@@ -108,8 +108,10 @@ class LatticeSparseCholesky {
   // K := K + sign k g g^T (sign +1 adds a spring, -1 removes one): rank-one
   // update/downdate of the factor along the elimination-tree path only.
   // std::runtime_error if the pair is not in the pattern, k or n is not
-  // finite, or a downdate makes K indefinite (a pivot not positive); the
-  // factor is then unchanged.  std::invalid_argument for sign not +-1.
+  // finite (the factor is then unchanged), or a downdate makes K indefinite (a
+  // pivot not positive: the downdate restores the columns it changed, the factor
+  // is unchanged), or an update overflows (then factorised() is false).
+  // std::invalid_argument for sign not +-1.
   void modify(const LatticeSpring &s, int sign);
 
   double factor_entries() const;    // stored entries of L (lower triangles + rectangles)
