@@ -502,7 +502,7 @@ void LatticeSparseCholesky::factorise(const std::vector<LatticeSpring> &springs,
     }
   }
 
-  factor_.assign(factor_size_, 0.0);
+  factor_.resize(factor_size_);    // every entry is written below (the blocks tile it)
   std::vector<double> F(max_front_), stack(max_stack_), pack;
   std::vector<std::size_t> stack_off;
   std::vector<int> stack_tree, loc(ncols_, -1);
