@@ -343,6 +343,7 @@ void LatticeSparseCholesky::symbolic()
   std::vector<int> mark(ncols_, -1), r;
   std::size_t block = 0;
   max_front_ = 0;
+  max_rows_ = 0;
   for (int t = 0; t < ntree; ++t) {
     TreeNode &tn = tree_[t];
     const int c0 = tn.col0, c1 = tn.col0 + tn.ncol;
@@ -384,6 +385,7 @@ void LatticeSparseCholesky::symbolic()
     const std::size_t m = (std::size_t) tn.ncol + tn.nrow;
     block += m * tn.ncol;
     max_front_ = std::max(max_front_, m * m);
+    max_rows_ = std::max(max_rows_, m);
   }
   rows_.shrink_to_fit();
   factor_size_ = block;
@@ -500,7 +502,7 @@ void LatticeSparseCholesky::factorise(const std::vector<LatticeSpring> &springs,
     }
   }
 
-  factor_.assign(factor_size_, 0.0);
+  factor_.resize(factor_size_);    // every entry is written below (the blocks tile it)
   std::vector<double> F(max_front_), stack(max_stack_), pack;
   std::vector<std::size_t> stack_off;
   std::vector<int> stack_tree, loc(ncols_, -1);
@@ -576,56 +578,64 @@ void LatticeSparseCholesky::solve(double *x) const
   if (!factorised_)
     throw std::logic_error("LatticeSparseCholesky::solve: no factor (factorise() first)");
   const int ntree = (int) tree_.size();
-  std::vector<double> w(ncols_), v;
+  std::vector<double> w(ncols_), v(max_rows_);
   for (int col = 0; col < ncols_; ++col) w[col] = x[col_dof_[col]];
-  std::size_t maxm = 0;
-  for (const auto &tn : tree_) maxm = std::max(maxm, (std::size_t) tn.ncol + tn.nrow);
-  v.resize(maxm);
-
-  // forward: L y = b, column by column through each block
-  for (int t = 0; t < ntree; ++t) {
-    const TreeNode &tn = tree_[t];
-    const int n = tn.ncol, m = n + tn.nrow;
-    const int *R = rows_.data() + tn.rows_off;
-    const double *L = factor_.data() + tn.block_off;
-    double *y = v.data();
-    std::copy(w.begin() + tn.col0, w.begin() + tn.col0 + n, y);
-    std::fill(y + n, y + m, 0.0);
-    for (int j = 0; j < n; ++j) {
-      const double *col = L + (std::size_t) j * m;
-      const double yj = y[j] / col[j];
-      y[j] = yj;
-      for (int i = j + 1; i < m; ++i) y[i] -= col[i] * yj;
-    }
-    std::copy(y, y + n, w.begin() + tn.col0);
-    for (int p = 0; p < tn.nrow; ++p) w[R[p]] += y[n + p];
-  }
-  // back: L^T x = y, in reverse
-  for (int t = ntree - 1; t >= 0; --t) {
-    const TreeNode &tn = tree_[t];
-    const int n = tn.ncol, m = n + tn.nrow;
-    const int *R = rows_.data() + tn.rows_off;
-    const double *L = factor_.data() + tn.block_off;
-    double *y = v.data();
-    std::copy(w.begin() + tn.col0, w.begin() + tn.col0 + n, y);
-    for (int p = 0; p < tn.nrow; ++p) y[n + p] = w[R[p]];
-    for (int j = n - 1; j >= 0; --j) {
-      const double *col = L + (std::size_t) j * m;
-      // four partial sums (a fixed order: deterministic)
-      double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-      int i = j + 1;
-      for (; i + 4 <= m; i += 4) {
-        s0 += col[i] * y[i];
-        s1 += col[i + 1] * y[i + 1];
-        s2 += col[i + 2] * y[i + 2];
-        s3 += col[i + 3] * y[i + 3];
-      }
-      for (; i < m; ++i) s0 += col[i] * y[i];
-      y[j] = (y[j] - ((s0 + s1) + (s2 + s3))) / col[j];
-    }
-    std::copy(y, y + n, w.begin() + tn.col0);
-  }
+  for (int t = 0; t < ntree; ++t) forward_block(t, w.data(), v.data());
+  for (int t = ntree - 1; t >= 0; --t) back_block(t, w.data(), v.data());
   for (int col = 0; col < ncols_; ++col) x[col_dof_[col]] = w[col];
+}
+
+/* ---------------------------------------------------------------------- */
+
+// y := w on the columns of t, then w on R_t (rows_too) or zeros; returns L_t
+const double *LatticeSparseCholesky::load_block(int t, const double *w, double *y, bool rows_too,
+                                                int &n, int &m) const
+{
+  const TreeNode &tn = tree_[t];
+  n = tn.ncol;
+  m = n + tn.nrow;
+  std::copy(w + tn.col0, w + tn.col0 + n, y);
+  const int *R = rows_.data() + tn.rows_off;
+  for (int p = 0; p < tn.nrow; ++p) y[n + p] = rows_too ? w[R[p]] : 0.0;
+  return factor_.data() + tn.block_off;
+}
+
+void LatticeSparseCholesky::forward_block(int t, double *w, double *scratch) const
+{
+  int n, m;
+  const double *L = load_block(t, w, scratch, false, n, m);
+  double *y = scratch;
+  for (int j = 0; j < n; ++j) {    // column by column through the block
+    const double *col = L + (std::size_t) j * m;
+    const double yj = y[j] / col[j];
+    y[j] = yj;
+    for (int i = j + 1; i < m; ++i) y[i] -= col[i] * yj;
+  }
+  std::copy(y, y + n, w + tree_[t].col0);
+  const int *R = rows(t);
+  for (int p = 0; p < m - n; ++p) w[R[p]] += y[n + p];
+}
+
+void LatticeSparseCholesky::back_block(int t, double *w, double *scratch) const
+{
+  int n, m;
+  const double *L = load_block(t, w, scratch, true, n, m);
+  double *y = scratch;
+  for (int j = n - 1; j >= 0; --j) {
+    const double *col = L + (std::size_t) j * m;
+    // four partial sums (a fixed order: deterministic)
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    int i = j + 1;
+    for (; i + 4 <= m; i += 4) {
+      s0 += col[i] * y[i];
+      s1 += col[i + 1] * y[i + 1];
+      s2 += col[i + 2] * y[i + 2];
+      s3 += col[i + 3] * y[i + 3];
+    }
+    for (; i < m; ++i) s0 += col[i] * y[i];
+    y[j] = (y[j] - ((s0 + s1) + (s2 + s3))) / col[j];
+  }
+  std::copy(y, y + n, w + tree_[t].col0);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -662,13 +672,9 @@ void LatticeSparseCholesky::modify(const LatticeSpring &s, int sign)
   xwork_.resize(ncols_, 0.0);
   const double sq = std::sqrt(s.k);
   for (int q = 0; q < nv; ++q) xwork_[cols[q]] += sq * vals[q];
-  std::size_t maxm = 0, most = 0;
-  for (int t : p) {
-    const std::size_t m = (std::size_t) tree_[t].ncol + tree_[t].nrow;
-    maxm = std::max(maxm, m);
-    most += m * tree_[t].ncol;
-  }
-  std::vector<double> v(maxm);
+  std::size_t most = 0;
+  for (int t : p) most += ((std::size_t) tree_[t].ncol + tree_[t].nrow) * tree_[t].ncol;
+  std::vector<double> v(max_rows_);
   // a downdate can fail part way: it keeps the old values of the column parts it
   // changes (col[j..m) of each column it rotates) in backup_, at these factor offsets
   std::vector<std::pair<std::size_t, std::size_t>> saved;    // (offset in factor_, length)
@@ -699,6 +705,7 @@ void LatticeSparseCholesky::modify(const LatticeSpring &s, int sign)
                     factor_.begin() + sv.first);
           o += sv.second;
         }
+        if (sign > 0) factorised_ = false;    // only an overflow: the columns before are changed
         pivot_error(tn.col0 + j, r2, sign > 0 ? "modify (update)" : "modify (downdate)");
       }
       const double rr = std::sqrt(r2);

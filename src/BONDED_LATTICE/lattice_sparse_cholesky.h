@@ -94,11 +94,24 @@ class LatticeSparseCholesky {
   // held entries untouched.  std::logic_error before a factorise().
   void solve(double *x) const;
 
+  // the steps of solve() one block at a time, on a vector w in column order (ncols()
+  // entries, w[col_of_dof(dof)]); scratch: max_rows() doubles.  forward_block(t):
+  // w[cols of t] := L11^-1 w[cols of t], then w[R_t] -= L21 w[cols of t]; back_block(t):
+  // w[cols of t] := L11^-T (w[cols of t] - L21^T w[R_t]).  Forward over t = 0, 1, ...
+  // then back over t = ntree()-1, ..., 0 is solve(); after the forward sweep, the back
+  // steps of the path from t to its root give w on the columns of t and its ancestors only
+  // (back_block needs w final on R_t).  After a factorise(); no checks.
+  void forward_block(int t, double *w, double *scratch) const;
+  void back_block(int t, double *w, double *scratch) const;
+  int max_rows() const { return (int) max_rows_; }    // the largest m_t
+
   // K := K + sign k g g^T (sign +1 adds a spring, -1 removes one): rank-one
   // update/downdate of the factor along the elimination-tree path only.
   // std::runtime_error if the pair is not in the pattern, k or n is not
-  // finite, or a downdate makes K indefinite (a pivot not positive); the
-  // factor is then unchanged.  std::invalid_argument for sign not +-1.
+  // finite (the factor is then unchanged), or a downdate makes K indefinite (a
+  // pivot not positive: the downdate restores the columns it changed, the factor
+  // is unchanged), or an update overflows (then factorised() is false).
+  // std::invalid_argument for sign not +-1.
   void modify(const LatticeSpring &s, int sign);
 
   double factor_entries() const;    // stored entries of L (lower triangles + rectangles)
@@ -147,7 +160,7 @@ class LatticeSparseCholesky {
   std::vector<int> rows_;
   std::vector<int> child_off_, child_, first_desc_;
   std::vector<double> factor_;
-  std::size_t factor_size_ = 0, max_front_ = 0, max_stack_ = 0;
+  std::size_t factor_size_ = 0, max_front_ = 0, max_stack_ = 0, max_rows_ = 0;
   std::vector<double> xwork_;    // modify(): the changing vector, zero between calls
   std::vector<double> backup_;   // modify(): the columns a downdate changes, until it succeeds
 
@@ -157,6 +170,7 @@ class LatticeSparseCholesky {
                     std::vector<int> &node_tree);
   void symbolic();
   bool in_pattern(int a, int b) const;
+  const double *load_block(int t, const double *w, double *y, bool rows_too, int &n, int &m) const;
   int spring_vector(const LatticeSpring &s, int *cols, double *vals) const;
   void check_spring(const LatticeSpring &s, const char *what) const;
   [[noreturn]] void pivot_error(int col, double pivot, const char *what) const;

@@ -304,6 +304,22 @@ void check_solve(const char *tag, Net &net, int leaf, double shift, std::mt19937
   report((p + "_ntree").c_str(), chol.ntree());
   report((p + "_depth").c_str(), chol.depth());
   report((p + "_tree_violations").c_str(), tree_violations(chol));
+
+  // block steps: the forward sweep, then the back steps of one node's path only, give that
+  // node's entries of the full solve, to the bit
+  std::vector<double> w(chol.ncols()), scratch(chol.max_rows());
+  for (int c = 0; c < chol.ncols(); ++c) w[c] = b[chol.dof_of_col(c)];
+  for (int t = 0; t < chol.ntree(); ++t) chol.forward_block(t, w.data(), scratch.data());
+  int mismatches = 0;
+  const int u = chol.dof_of_col(0) / net.dim;    // a node in the first leaf: the longest path
+  const std::vector<int> path = chol.path(u, u);
+  for (auto it = path.rbegin(); it != path.rend(); ++it) chol.back_block(*it, w.data(), scratch.data());
+  for (int c = 0; c < net.dim; ++c) {
+    const int col = chol.col_of_dof(net.dim * u + c);
+    if (col >= 0) mismatches += w[col] != xs[net.dim * u + c];
+  }
+  report((p + "_path_back_steps").c_str(), path.size());
+  report((p + "_path_back_mismatches").c_str(), mismatches);
   int roots = 0;
   for (int t = 0; t < chol.ntree(); ++t) roots += chol.parent(t) < 0;
   report((p + "_roots").c_str(), roots);

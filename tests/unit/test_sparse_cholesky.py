@@ -59,6 +59,10 @@ def test_solve_matches_assembled_matrix(check, tag):
     # children, R_t sorted ancestor columns, children, subtrees [first_descendant(t), t],
     # zeros above the diagonal of each block
     assert check[f"{tag}_tree_violations"] == 0
+    # forward_block over all blocks, then back_block on one leaf node's path to the root only:
+    # that node's entries of solve(), bit for bit (the same operations in the same order)
+    assert check[f"{tag}_path_back_mismatches"] == 0
+    assert 1 < check[f"{tag}_path_back_steps"] < check[f"{tag}_ntree"]
 
 
 def test_disconnected_network_is_a_forest(check):
