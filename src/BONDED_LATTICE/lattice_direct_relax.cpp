@@ -360,7 +360,8 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
 ------------------------------------------------------------------------- */
 
 void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std::vector<double> &u,
-                                    bigint maxbreak, bool break_all, Outcome &out)
+                                    bigint maxbreak, bool break_all, Outcome &out,
+                                    const std::function<void(const Break &)> &on_break)
 {
   u.assign(net.free.size(), 0.0);
   prepare_factor(net, state, u, out);
@@ -388,6 +389,7 @@ void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std
     auto take = [&](int k, BreakMode m, double r) {
       net.springs[k].intact = false;
       out.breaks.push_back({net.keys[k].first, net.keys[k].second, m, r});
+      if (on_break) on_break(out.breaks.back());
     };
     if (break_all) {
       for (size_t k = 0; k < net.springs.size(); k++) {
@@ -410,7 +412,8 @@ void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std
    one pass: gather, solve and break on rank 0, then move and break everywhere
 ------------------------------------------------------------------------- */
 
-LatticeDirectRelax::Outcome LatticeDirectRelax::pass(bigint maxbreak, bool break_all)
+LatticeDirectRelax::Outcome LatticeDirectRelax::pass(bigint maxbreak, bool break_all,
+                                                     const std::function<void(const Break &)> &on_break)
 {
   Outcome out;
   Network net;
@@ -422,7 +425,7 @@ LatticeDirectRelax::Outcome LatticeDirectRelax::pass(bigint maxbreak, bool break
     auto &state = pair->direct_state();
     if (!state) state = std::make_shared<LatticeDirectState>();
     try {
-      break_loop(net, *state, u, maxbreak, break_all, out);
+      break_loop(net, *state, u, maxbreak, break_all, out, on_break);
     } catch (std::exception &e) {
       failure = e.what();
       state.reset();

@@ -33,7 +33,7 @@
 #include "lattice_sparse_cholesky.h"
 #include "pointers.h"
 
-#include <map>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -84,8 +84,11 @@ class LatticeDirectRelax : protected Pointers {
   };
   // after a force evaluation (run 0): one pass as described above, breaking
   // at most maxbreak bonds (-1: no limit), all past their threshold at once
-  // with break_all; moves the particles and breaks the records; collective
-  Outcome pass(bigint maxbreak, bool break_all);
+  // with break_all; moves the particles and breaks the records; collective.
+  // Rank 0 calls on_break for each break as it happens (a log that shows the
+  // progress of a long avalanche)
+  Outcome pass(bigint maxbreak, bool break_all,
+               const std::function<void(const Break &)> &on_break);
 
  private:
   PairLatticeBond *pair;
@@ -121,7 +124,8 @@ class LatticeDirectRelax : protected Pointers {
   bool equilibrate(Network &net, LatticeDirectState &state, std::vector<double> &u, Outcome &out);
   // rank 0: the seed's loop
   void break_loop(Network &net, LatticeDirectState &state, std::vector<double> &u,
-                  bigint maxbreak, bool break_all, Outcome &out);
+                  bigint maxbreak, bool break_all, Outcome &out,
+                  const std::function<void(const Break &)> &on_break);
   double ratio(const Spring &s, BreakMode &mode) const;
   LatticeSpring term(const LatticeDirectState &state, int k) const;
 };

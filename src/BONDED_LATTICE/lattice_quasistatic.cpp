@@ -454,12 +454,16 @@ void LatticeQuasistatic::run_direct(bigint &broken, int &tension, int &shear, bi
                        "with the bonds as they are", MAX_IDLE_PASSES, largest, ftol);
       break;
     }
-    const auto out = dr.pass(maxbreak < 0 ? -1 : maxbreak - broken, break_all);
+    // the breaks go to the file as rank 0 makes them (flushed: the progress of an avalanche)
+    const auto out = dr.pass(maxbreak < 0 ? -1 : maxbreak - broken, break_all,
+                             [this](const LatticeDirectRelax::Break &b) {
+                               record_break(b.owner, b.partner, b.mode, b.ratio);
+                               if (breaks_fp) fflush(breaks_fp);
+                             });
     relaxations++;
     solves += out.solves;
     factorisations += out.factorised;
     for (const auto &b : out.breaks) {
-      record_break(b.owner, b.partner, b.mode, b.ratio);
       broken++;
       (b.mode == BreakMode::Tension ? tension : shear)++;
     }
