@@ -45,6 +45,27 @@ static constexpr double MAX_TURN = 1.0e-3;
 // anew at the current directions, after NEWTON_MAX the pass ends
 static constexpr int NEWTON_REFRESH = 6;
 static constexpr int NEWTON_MAX = 30;
+// a flop of the factorisation's dense kernels takes this fraction of the time
+// of a flop of a solve, which streams the factor from memory (measured by
+// bench/sparse_cholesky.py: 1.53 s and 0.067 s at 184,800 particles)
+static constexpr double FACTOR_FLOP_SPEED = 0.32;
+
+namespace {
+// the cost of a factorisation in solves, from the blocks of the ordering:
+// per tree node the dense partial Cholesky of its n columns, the triangular
+// solve of its |R| rows and the update of the |R| x |R| trailing matrix,
+// against a solve's two passes over every entry of the factor
+double factor_in_solves(const LatticeSparseCholesky &factor)
+{
+  double fact = 0.0, entries = 0.0;
+  for (int t = 0; t < factor.ntree(); t++) {
+    const double n = factor.col_end(t) - factor.col_begin(t), r = factor.nrows(t);
+    fact += n * n * n / 3.0 + n * n * r + n * r * r;
+    entries += n * (n + 1) / 2.0 + n * r;
+  }
+  return entries > 0.0 ? FACTOR_FLOP_SPEED * fact / (4.0 * entries) : 0.0;
+}
+}    // namespace
 
 // values sent per atom (tag apart): x (dim), held bits
 // values per record: the owner-to-partner vector (3), r, touch, kn, xb, fs0, mu_p, intact, 0
@@ -279,10 +300,17 @@ void LatticeDirectRelax::prepare_factor(Network &net, LatticeDirectState &state,
     std::vector<std::pair<int, int>> pairs(ns);
     for (size_t k = 0; k < ns; k++) pairs[k] = state.ends[k] = {net.springs[k].a, net.springs[k].b};
     state.factor.analyse(net.dim, (int) net.tags.size(), net.coords.data(), net.free, pairs);
+    state.factor_in_solves = factor_in_solves(state.factor);
     out.analysed = true;
   }
   factorise(net, state, u);
   out.factorised++;
+  if (out.analysed)
+    utils::logmesg(lmp, "lattice/quasistatic relax direct: {} unknowns in nested dissection "
+                   "order ({} tree nodes, depth {}); factor of {:.4g} entries, {:.0f} MB; a "
+                   "factorisation costs about {:.1f} solves\n", state.factor.ncols(),
+                   state.factor.ntree(), state.factor.depth(), state.factor.factor_entries(),
+                   state.factor.bytes() / 1048576.0, state.factor_in_solves);
 }
 
 // a new factor of the springs that carry force at the displacements u, with
@@ -315,13 +343,17 @@ void LatticeDirectRelax::factorise(Network &net, LatticeDirectState &state,
   state.shift = SHIFT * mean;
   state.factor.factorise(active, state.shift);
   state.factorisations++;
+  state.excess_steps = 0.0;
 }
 
 /* ----------------------------------------------------------------------
    Newton steps with the factor until no free force component exceeds ftol:
    the springs that carry force join or leave the factor first (rank-one
-   changes); after NEWTON_REFRESH steps the factor is made anew at the
-   current directions.  false if NEWTON_MAX steps did not get there
+   changes).  The factor is made anew at the current directions when the
+   steps beyond the first of each equilibrium since it was made have cost as
+   much as a factorisation (a rent-or-buy rule on operation counts, so the
+   same on every run), or after NEWTON_REFRESH steps of one equilibrium.
+   false if NEWTON_MAX steps did not get there
 ------------------------------------------------------------------------- */
 
 bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
@@ -342,7 +374,10 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
     out.changes += changed;
     if (largest <= ftol) return true;
     if (step == NEWTON_MAX) break;
-    if (step == NEWTON_REFRESH) {
+    // the steps beyond the first come from the springs' turn since the factor was made:
+    // a new factor at the current directions once they have cost as much as one
+    if (step > 0) state.excess_steps += 1.0;
+    if (step == NEWTON_REFRESH || (step > 0 && state.excess_steps >= state.factor_in_solves)) {
       factorise(net, state, u);
       out.factorised++;
     }

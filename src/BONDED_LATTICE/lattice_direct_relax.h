@@ -57,6 +57,11 @@ struct LatticeDirectState {
   double shift = 0.0;
   LatticeSparseCholesky factor;
   bigint factorisations = 0;
+  // the cost of a factorisation in solves (from the operation counts of the
+  // ordering), and the Newton steps beyond the first of each equilibrium
+  // since the factor was made: a new factor when they have cost as much
+  double factor_in_solves = 0.0;
+  double excess_steps = 0.0;
 };
 
 class LatticeDirectRelax : protected Pointers {

@@ -109,16 +109,19 @@ def test_break_order_gives_the_same_breaks_in_order(tmp_path):
     assert np.all(np.diff(steps) >= 0)
 
 
-def test_relax_local_in_a_periodic_box_breaks_in_the_converged_order(tmp_path):
-    """relax local in a periodic box (ghosts that are images of local particles, the corner
-    ghosts passing forces on) at its default tolerance, on 1 and 2 ranks, against LAMMPS'
-    FIRE minimiser at 1e-5 of Kn Xb, a tolerance at which its order of breaks no longer
-    changes (docs/lattice_quasistatic.rst, "Accuracy"): the same bonds in the same order."""
+def test_relax_local_and_direct_in_a_periodic_box_break_in_the_converged_order(tmp_path):
+    """relax local (ghosts that are images of local particles, the corner ghosts passing
+    forces on) and relax direct (springs across the seam by the ghosts' vectors, a factor
+    of the torus) in a periodic box at their default tolerance, on 1 and 2 ranks, against
+    LAMMPS' FIRE minimiser at 1e-5 of Kn Xb, a tolerance at which its order of breaks no
+    longer changes (docs/lattice_quasistatic.rst, "Accuracy"): the same bonds in the same
+    order."""
     base = dict(kind="polycrystal", n_x=20, n_grains=6, n_steps=10, strain_step=1e-5,
                 boundary="periodic")
     orders = {}
     for name, relax, ftol, np_ in (("fire", "fire", 1e-5, 1), ("local", "local", None, 1),
-                                   ("local2", "local", None, 2)):
+                                   ("local2", "local", None, 2), ("direct", "direct", None, 1),
+                                   ("direct2", "direct", None, 2)):
         info = write_scene(Scene(**base, relax=relax, ftol=ftol), tmp_path / name)
         res = runner.run_deck(info["deck"], tmp_path / name, np_=np_, progress=False)
         assert res.returncode == 0, res.error
@@ -126,3 +129,5 @@ def test_relax_local_in_a_periodic_box_breaks_in_the_converged_order(tmp_path):
     assert len(orders["fire"]) > 10, "the test must break bonds"
     np.testing.assert_array_equal(orders["local"], orders["fire"])
     np.testing.assert_array_equal(orders["local2"], orders["fire"])
+    np.testing.assert_array_equal(orders["direct"], orders["fire"])
+    np.testing.assert_array_equal(orders["direct2"], orders["fire"])
