@@ -49,8 +49,38 @@ static constexpr int NEWTON_MAX = 30;
 // of a flop of a solve, which streams the factor from memory (measured by
 // bench/sparse_cholesky.py: 1.53 s and 0.067 s at 184,800 particles)
 static constexpr double FACTOR_FLOP_SPEED = 0.32;
+// the over-relaxation of the local smoothing after a Newton step, and its
+// budget of particle moves per unknown before a solve takes over instead
+static constexpr double SMOOTH_OMEGA = 1.5;
+static constexpr double SMOOTH_BUDGET = 0.25;
 
 namespace {
+// m x = rhs for the symmetric dim x dim block m (Cramer); false if singular
+bool solve_small(const double m[3][3], const double *rhs, double *x, int dim)
+{
+  if (dim == 2) {
+    const double det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    if (!(std::fabs(det) > 0.0)) return false;
+    x[0] = (m[1][1] * rhs[0] - m[0][1] * rhs[1]) / det;
+    x[1] = (m[0][0] * rhs[1] - m[1][0] * rhs[0]) / det;
+    return true;
+  }
+  auto det3 = [](const double t[3][3]) {
+    return t[0][0] * (t[1][1] * t[2][2] - t[1][2] * t[2][1]) -
+        t[0][1] * (t[1][0] * t[2][2] - t[1][2] * t[2][0]) +
+        t[0][2] * (t[1][0] * t[2][1] - t[1][1] * t[2][0]);
+  };
+  const double det = det3(m);
+  if (!(std::fabs(det) > 0.0)) return false;
+  for (int c = 0; c < 3; c++) {
+    double t[3][3];
+    for (int p = 0; p < 3; p++)
+      for (int q = 0; q < 3; q++) t[p][q] = (q == c) ? rhs[p] : m[p][q];
+    x[c] = det3(t) / det;
+  }
+  return true;
+}
+
 // the cost of a factorisation in solves, from the blocks of the ordering:
 // per tree node the dense partial Cholesky of its n columns, the triangular
 // solve of its |R| rows and the update of the |R| x |R| trailing matrix,
@@ -238,22 +268,28 @@ double LatticeDirectRelax::ratio(const Spring &s, BreakMode &mode) const
    free force component
 ------------------------------------------------------------------------- */
 
+// a spring's stretch and force on its owner (f, dim components) at u
+void LatticeDirectRelax::spring_force(Spring &s, int dim, const std::vector<double> &u) const
+{
+  double d[3] = {s.d[0], s.d[1], s.d[2]};
+  for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+  const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  s.e = normal_stretch(r, s.touch);
+  // on the owner along the owner-to-partner vector, tension positive; an open contact none
+  const double scale = (!s.intact && contact_open(s.e)) ? 0.0 : normal_force(s.kn, s.e) / r;
+  for (int c = 0; c < 3; c++) s.f[c] = scale * d[c];
+}
+
 double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
                                   std::vector<double> &f) const
 {
   const int dim = net.dim;
   f.assign(u.size(), 0.0);
   for (Spring &s : net.springs) {
-    double d[3] = {s.d[0], s.d[1], s.d[2]};
-    for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
-    const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    s.e = normal_stretch(r, s.touch);
-    if (!s.intact && contact_open(s.e)) continue;
-    // on the owner along the owner-to-partner vector, tension positive
-    const double scale = normal_force(s.kn, s.e) / r;
+    spring_force(s, dim, u);
     for (int c = 0; c < dim; c++) {
-      f[(size_t) s.a * dim + c] += scale * d[c];
-      f[(size_t) s.b * dim + c] -= scale * d[c];
+      f[(size_t) s.a * dim + c] += s.f[c];
+      f[(size_t) s.b * dim + c] -= s.f[c];
     }
   }
   double largest = 0.0;
@@ -262,6 +298,92 @@ double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
     largest = MAX(largest, std::fabs(f[q]));
   }
   return largest;
+}
+
+/* ----------------------------------------------------------------------
+   what a Newton step leaves (the springs' turn since the factor was made,
+   mostly near the break) removed locally: Gauss-Seidel over-relaxation of
+   the particles whose free force exceeds ftol, in the order they come up
+   (relax local's move, D^-1 f with D = sum of Kn n n^T over the springs that
+   carry force, serial on rank 0).  f holds the forces at u and is kept up to
+   date.  false if `budget` moves did not bring every force below ftol
+------------------------------------------------------------------------- */
+
+bool LatticeDirectRelax::smooth(Network &net, std::vector<double> &u, std::vector<double> &f,
+                                bigint budget, Outcome &out) const
+{
+  const int dim = net.dim;
+  const size_t nnodes = net.tags.size();
+  auto above = [&](size_t a) {
+    for (int c = 0; c < dim; c++)
+      if (std::fabs(f[a * dim + c]) > ftol) return true;
+    return false;
+  };
+  std::vector<int> queue;
+  std::vector<unsigned char> queued(nnodes, 0);
+  for (size_t a = 0; a < nnodes; a++)
+    if (above(a)) {
+      queue.push_back((int) a);
+      queued[a] = 1;
+    }
+  size_t head = 0;
+  bigint moves = 0;
+  while (head < queue.size()) {
+    if (moves >= budget) {
+      out.moves += moves;
+      return false;
+    }
+    const int a = queue[head++];
+    queued[a] = 0;
+    if (!above(a)) continue;
+    // D on the free components (a direction no spring resists carries no force)
+    double m[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    for (int e = net.node_start[a]; e < net.node_start[a + 1]; e++) {
+      const Spring &s = net.springs[net.node_springs[e]];
+      if (!s.intact && contact_open(s.e)) continue;
+      double d[3] = {s.d[0], s.d[1], s.d[2]};
+      for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+      const double rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+      for (int p = 0; p < dim; p++)
+        for (int q = 0; q < dim; q++) m[p][q] += s.kn * d[p] * d[q] / rsq;
+    }
+    double rhs[3] = {0, 0, 0}, trace = 0.0;
+    for (int c = 0; c < dim; c++) trace += m[c][c];
+    for (int c = 0; c < dim; c++) {
+      if (net.free[(size_t) a * dim + c]) {
+        rhs[c] = f[(size_t) a * dim + c];
+        m[c][c] += 1.0e-12 * trace;
+      } else {
+        for (int q = 0; q < dim; q++) m[c][q] = m[q][c] = 0.0;
+        m[c][c] = 1.0;
+      }
+    }
+    double dx[3] = {0, 0, 0};
+    if (!solve_small(m, rhs, dx, dim)) continue;
+    for (int c = 0; c < dim; c++) u[(size_t) a * dim + c] += SMOOTH_OMEGA * dx[c];
+    moves++;
+    for (int e = net.node_start[a]; e < net.node_start[a + 1]; e++) {
+      Spring &s = net.springs[net.node_springs[e]];
+      const double old[3] = {s.f[0], s.f[1], s.f[2]};
+      spring_force(s, dim, u);
+      for (int c = 0; c < dim; c++) {
+        const double df = s.f[c] - old[c];
+        if (net.free[(size_t) s.a * dim + c]) f[(size_t) s.a * dim + c] += df;
+        if (net.free[(size_t) s.b * dim + c]) f[(size_t) s.b * dim + c] -= df;
+      }
+      for (const int b : {s.a, s.b})
+        if (!queued[b] && above(b)) {
+          queued[b] = 1;
+          queue.push_back(b);
+        }
+    }
+    if (head > 4096 && head * 2 > queue.size()) {
+      queue.erase(queue.begin(), queue.begin() + (long) head);
+      head = 0;
+    }
+  }
+  out.moves += moves;
+  return true;
 }
 
 /* ----------------------------------------------------------------------
@@ -360,6 +482,7 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
                                      std::vector<double> &u, Outcome &out)
 {
   std::vector<double> f;
+  bool smoothed = false;
   for (int step = 0; step <= NEWTON_MAX; step++) {
     const double largest = forces(net, u, f);
     int changed = 0;
@@ -374,6 +497,13 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
     out.changes += changed;
     if (largest <= ftol) return true;
     if (step == NEWTON_MAX) break;
+    // what a Newton step left: first locally (the forces are then evaluated anew)
+    if (step > 0 && !smoothed) {
+      smoothed = true;
+      smooth(net, u, f, (bigint) (SMOOTH_BUDGET * state.factor.ncols()) + 1, out);
+      step--;
+      continue;
+    }
     // the steps beyond the first come from the springs' turn since the factor was made:
     // a new factor at the current directions once they have cost as much as one
     if (step > 0) state.excess_steps += 1.0;
@@ -399,6 +529,20 @@ void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std
                                     const std::function<void(const Break &)> &on_break)
 {
   u.assign(net.free.size(), 0.0);
+  // the springs of each node, for the local smoothing
+  const size_t nnodes = net.tags.size();
+  net.node_start.assign(nnodes + 1, 0);
+  for (const Spring &s : net.springs) {
+    net.node_start[s.a + 1]++;
+    net.node_start[s.b + 1]++;
+  }
+  for (size_t a = 0; a < nnodes; a++) net.node_start[a + 1] += net.node_start[a];
+  net.node_springs.assign(net.node_start[nnodes], 0);
+  std::vector<int> fill(net.node_start.begin(), net.node_start.end() - 1);
+  for (size_t k = 0; k < net.springs.size(); k++) {
+    net.node_springs[fill[net.springs[k].a]++] = (int) k;
+    net.node_springs[fill[net.springs[k].b]++] = (int) k;
+  }
   prepare_factor(net, state, u, out);
   if (!equilibrate(net, state, u, out)) {
     out.relinearise = true;

@@ -83,6 +83,7 @@ class LatticeDirectRelax : protected Pointers {
     bigint solves = 0;            // Newton steps (one solve each)
     bigint changes = 0;           // springs that joined or left the factor
     bigint factorised = 0;        // numeric factorisations
+    bigint moves = 0;             // particle moves of the local smoothing
     bool analysed = false;        // a new ordering (atoms or records changed)
     double largest_move = 0.0;    // largest displacement component of the pass
     bool relinearise = false;     // an equilibrium took NEWTON_MAX steps: the pass ended
@@ -108,6 +109,7 @@ class LatticeDirectRelax : protected Pointers {
     double kn, xb, fs0, mu_p;
     bool intact;
     double e;                 // stretch Xn at the current displacements
+    double f[3];              // its force on the owner there
   };
   struct Network {
     int dim = 0;
@@ -116,6 +118,7 @@ class LatticeDirectRelax : protected Pointers {
     std::vector<unsigned char> free;        // dim per node
     std::vector<Spring> springs;
     std::vector<std::pair<tagint, tagint>> keys;
+    std::vector<int> node_start, node_springs;    // the springs of each node (CSR)
   };
 
   void gather(Network &net);    // collective; the network on rank 0
@@ -125,6 +128,10 @@ class LatticeDirectRelax : protected Pointers {
   void factorise(Network &net, LatticeDirectState &state, const std::vector<double> &u);
   // rank 0: stretches and free forces at u; returns the largest force component
   double forces(Network &net, const std::vector<double> &u, std::vector<double> &f) const;
+  void spring_force(Spring &s, int dim, const std::vector<double> &u) const;
+  // rank 0: Gauss-Seidel moves of the particles whose force exceeds ftol, at most budget
+  bool smooth(Network &net, std::vector<double> &u, std::vector<double> &f, bigint budget,
+              Outcome &out) const;
   // rank 0: Newton steps to ftol; false if they did not get there
   bool equilibrate(Network &net, LatticeDirectState &state, std::vector<double> &u, Outcome &out);
   // rank 0: the seed's loop
