@@ -22,9 +22,9 @@ KINDS = ("layer-extension", "layer-compression", "polycrystal", "expanding")
 # or uniaxial (the other axis' walls stay where they are)
 DEFORMATIONS = ("pure-shear", "uniaxial")
 MODES = ("quasistatic", "dynamic")
-# how a quasi-static step relaxes: lattice/quasistatic relax local (over-relaxation where
-# the forces exceed the tolerance; the default), relax direct (exact linear solves with a
-# sparse Cholesky factor updated per break), or LAMMPS' FIRE minimiser over the whole box
+# how a quasi-static step relaxes: lattice/quasistatic relax direct (Newton steps with a
+# sparse Cholesky factor updated per break; the default), relax local (over-relaxation where
+# the forces exceed the tolerance), or LAMMPS' FIRE minimiser over the whole box
 RELAXATIONS = ("local", "direct", "fire")
 # the default tolerance of each, a fraction of Kn Xb.  relax local at 1e-4 breaks the bonds
 # of an exact linear solve in its order at 4200, 11,600 and 16,560 particles; FIRE at 1e-3
@@ -134,7 +134,7 @@ class Scene:
     # ...: the exact order of the first breaks (within a strain step too)
     break_order: int = 0
     maxsteps: int = 100000         # per relaxation (lattice/quasistatic maxsteps)
-    relax: str = "local"           # quasistatic: RELAXATIONS
+    relax: str = "direct"          # quasistatic: RELAXATIONS
     # "atomic": per-type mass and pair_style lattice/bond diameter d (less memory); not
     # for expanding grains, whose particles need their own diameters
     atom_style: str = "sphere"
