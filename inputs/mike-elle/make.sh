@@ -23,3 +23,9 @@ bonded-lattice scene polycrystal --n 30 --grains 12 --steps 40 --strain-step 5e-
     --boundary periodic --relax local --out polycrystal-periodic-local > /dev/null
 (cd polycrystal-periodic-local && lmp -in in.polycrystal.quasistatic \
     -log log.$DATE.polycrystal-periodic-local.g++.1 -screen none && mv scene.dat scene.quasistatic.dat)
+# the layer in extension relaxed by lattice/quasistatic relax direct (Newton steps with a
+# sparse Cholesky factor kept from break to break), the scenes' default quasi-static relaxation
+bonded-lattice scene layer-extension --n 30 --steps 24 --strain-step 5e-6 --relax direct \
+    --out layer-extension-direct > /dev/null
+(cd layer-extension-direct && lmp -in in.layer-extension.quasistatic \
+    -log log.$DATE.layer-extension-direct.g++.1 -screen none && mv scene.dat scene.quasistatic.dat)
