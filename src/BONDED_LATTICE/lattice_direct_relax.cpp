@@ -101,8 +101,9 @@ double factor_in_solves(const LatticeSparseCholesky &factor)
 // values per record: the owner-to-partner vector (3), r, touch, kn, xb, fs0, mu_p, intact, 0
 static constexpr int RECORD_VALUES = 11;
 
-LatticeDirectRelax::LatticeDirectRelax(LAMMPS *lmp, PairLatticeBond *pair_in, double ftol_in) :
-    Pointers(lmp), pair(pair_in), ftol(ftol_in)
+LatticeDirectRelax::LatticeDirectRelax(LAMMPS *lmp, PairLatticeBond *pair_in, double ftol_in,
+                                       int threads_in) :
+    Pointers(lmp), pair(pair_in), ftol(ftol_in), threads(threads_in)
 {
 }
 
@@ -604,6 +605,7 @@ LatticeDirectRelax::Outcome LatticeDirectRelax::pass(bigint maxbreak, bool break
     auto &state = pair->direct_state();
     if (!state) state = std::make_shared<LatticeDirectState>();
     try {
+      state->factor.set_threads(threads);
       break_loop(net, *state, u, maxbreak, break_all, out, on_break);
     } catch (std::exception &e) {
       failure = e.what();

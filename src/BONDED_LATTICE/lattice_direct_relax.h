@@ -66,7 +66,7 @@ struct LatticeDirectState {
 
 class LatticeDirectRelax : protected Pointers {
  public:
-  LatticeDirectRelax(class LAMMPS *, PairLatticeBond *pair, double ftol);
+  LatticeDirectRelax(class LAMMPS *, PairLatticeBond *pair, double ftol, int threads);
 
   // refuses what the method cannot treat (an error naming it)
   void check_model();
@@ -99,6 +99,7 @@ class LatticeDirectRelax : protected Pointers {
  private:
   PairLatticeBond *pair;
   double ftol;
+  int threads;    // of the factor's factorisations and solves
   std::vector<tagint> held_ids;    // probe_fixes: ID, bits of every particle holding some
 
   // the network on rank 0, in ID order

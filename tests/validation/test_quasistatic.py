@@ -146,6 +146,7 @@ def test_minimize_with_shear_springs_is_refused(tmp_path):
     ("ftol 1 relax local omega 2", r"omega 2 is out of range: need 0 < omega < 2"),
     ("ftol 1 relax local", r"relax local needs bonds without shear springs"),
     ("ftol 1 relax direct", r"relax direct needs bonds without shear springs"),
+    ("ftol 1 relax direct threads 0", r"threads 0 is out of range: need >= 1"),
     ("ftol 1 maxsteps 0", r"maxsteps 0 is out of range"),
     ("ftol 1 colour red", r"Unknown lattice/quasistatic keyword colour"),
 ])
