@@ -142,7 +142,7 @@ inline void kernel4x4(const double *a, const double *b, int K, double *acc)
 }
 
 // fronts whose trailing matrix has fewer rows than this update it on one thread
-constexpr int SYRK_PARALLEL_ROWS = 256;
+constexpr int SYRK_PARALLEL_ROWS = 128;
 
 // the 4-row blocks ib0 <= ib < ib1 of C -= A A^T (lower triangle) from the packed A
 void syrk_rows(int N, int K, const double *pack, int nb4, int ib0, int ib1, double *C, int ldc)
