@@ -51,12 +51,13 @@
    subtrees of the separator tree at the same time; modify() is one path and
    stays serial.  The plan (made by analyse() and set_threads()) picks task
    roots by splitting the costliest subtree greedily, from the roots of the
-   forest down, while the estimate of the time (the tree nodes above the
-   tasks, "the top", serial; the tasks on the threads in order of decreasing
-   cost) decreases; solve() and factorise() have their own plans (costs: the
-   block entries m_t n_t; the flops).  Each task is a range [first_descendant
-   (r), r] of the post-order.  The threads are a small pool kept by the object
-   (workers wait on a condition variable between calls).
+   forest down to at most 64 tasks, and keeps the split of least estimated
+   time (the tree nodes above the tasks, "the top", on one thread; the tasks
+   dealt to the threads by decreasing cost); solve() and factorise() have
+   their own plans (costs: the block entries m_t n_t; the flops).  Each task
+   is a range [first_descendant(r), r] of the post-order.  The threads are a
+   small pool kept by the object (set_threads() starts them; they wait on a
+   condition variable between calls, so a call costs no thread start-up).
      Results are bit-identical for any number of threads (and to the serial
    code): every floating-point operation, and for every variable the order of
    the operations on it, is that of the serial post-order sweep.
