@@ -943,37 +943,34 @@ void LatticeSparseCholesky::solve(double *x) const
   std::unique_ptr<double[]> wbuf(new double[ncols_]);    // every entry gathered below
   double *w = wbuf.get();
   std::vector<double> kept(pl.defer_off[ntree]);
-  std::vector<std::vector<double>> scratch(pool_->size());
-  auto subtree = [&](int k, int &first, int &c0, int &c1) {
-    const int root = pl.roots[k];
-    first = first_desc_[root];
-    c0 = tree_[first].col0;
-    c1 = tree_[root].col0 + tree_[root].ncol;
+  std::vector<std::vector<double>> scratch(pool_->size(), std::vector<double>(max_rows_));
+  // the q-th task run (by decreasing cost): its subtree [first, root], its columns [c0, c1)
+  struct Range {
+    int first, root, c0, c1;
+  };
+  auto range = [&](int q) {
+    const int root = pl.roots[pl.order[q]], first = first_desc_[root];
+    return Range{first, root, tree_[first].col0, col_end(root)};
   };
 
   // forward, the tasks: w gathered on their columns; the products for the
   // top's rows kept
   pool_->run(ntask, [&](int q, int thread) {
-    const int k = pl.order[q];
-    int first, c0, c1;
-    subtree(k, first, c0, c1);
-    std::vector<double> &v = scratch[thread];
-    if (v.empty()) v.resize(max_rows_);
-    for (int col = c0; col < c1; ++col) w[col] = x[col_dof_[col]];
-    for (int t = first; t <= pl.roots[k]; ++t) {
+    const Range r = range(q);
+    for (int col = r.c0; col < r.c1; ++col) w[col] = x[col_dof_[col]];
+    for (int t = r.first; t <= r.root; ++t) {
       const int nkept = (int) (pl.defer_off[t + 1] - pl.defer_off[t]);
-      forward_rows(t, w, v.data(), tree_[t].nrow - nkept, kept.data() + pl.defer_off[t]);
+      forward_rows(t, w, scratch[thread].data(), tree_[t].nrow - nkept, kept.data() + pl.defer_off[t]);
     }
   });
   // forward, the top: gathered, then the post-order walk (the serial order of the additions)
-  std::vector<double> &v = scratch[0];
-  if (v.empty()) v.resize(max_rows_);
+  double *v = scratch[0].data();
   for (int t = 0; t < ntree; ++t)
     if (pl.task_of[t] < 0)
-      for (int col = tree_[t].col0; col < tree_[t].col0 + tree_[t].ncol; ++col) w[col] = x[col_dof_[col]];
+      for (int col = tree_[t].col0; col < col_end(t); ++col) w[col] = x[col_dof_[col]];
   for (int t = 0; t < ntree; ++t) {
     if (pl.task_of[t] < 0) {
-      forward_rows(t, w, v.data(), tree_[t].nrow, nullptr);
+      forward_rows(t, w, v, tree_[t].nrow, nullptr);
       continue;
     }
     const std::size_t o = pl.defer_off[t], nkept = pl.defer_off[t + 1] - o;
@@ -983,17 +980,13 @@ void LatticeSparseCholesky::solve(double *x) const
   // back: the top, then the tasks
   for (int t = ntree - 1; t >= 0; --t)
     if (pl.task_of[t] < 0) {
-      back_block(t, w, v.data());
-      for (int col = tree_[t].col0; col < tree_[t].col0 + tree_[t].ncol; ++col) x[col_dof_[col]] = w[col];
+      back_block(t, w, v);
+      for (int col = tree_[t].col0; col < col_end(t); ++col) x[col_dof_[col]] = w[col];
     }
   pool_->run(ntask, [&](int q, int thread) {
-    const int k = pl.order[q];
-    int first, c0, c1;
-    subtree(k, first, c0, c1);
-    std::vector<double> &vt = scratch[thread];
-    if (vt.empty()) vt.resize(max_rows_);
-    for (int t = pl.roots[k]; t >= first; --t) back_block(t, w, vt.data());
-    for (int col = c0; col < c1; ++col) x[col_dof_[col]] = w[col];
+    const Range r = range(q);
+    for (int t = r.root; t >= r.first; --t) back_block(t, w, scratch[thread].data());
+    for (int col = r.c0; col < r.c1; ++col) x[col_dof_[col]] = w[col];
   });
 }
 
