@@ -13,7 +13,13 @@ terms over its time) and the solve's relative residual ``||K x - b|| / ||b||``: 
 factor, of the factor after the ``--mods`` downdates and of a fresh factorisation of that
 reduced spring set (b random on every free dof).
 
+``--threads 1 2``: per size also a second table, the factorisation and the best of 5 solves of
+the same factor on each thread count (``LatticeSparseCholesky::set_threads``), the speed-up over
+the first count, the plans' task counts, and whether the factor and the solution are
+bit-identical to the first count's (a hash of their bits).
+
     python bench/sparse_cholesky.py        # 60x70 100x116 400x462 800x922: 4200 ... 737,600 nodes
+    python bench/sparse_cholesky.py --sizes 400x462 800x922 --threads 1 2
 """
 
 from __future__ import annotations
@@ -27,7 +33,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 SOURCES = [ROOT / "bench" / "sparse_cholesky_bench.cpp",
            ROOT / "src" / "BONDED_LATTICE" / "lattice_sparse_cholesky.cpp"]
-FLAGS = ["-std=c++17", "-O3", "-DNDEBUG", "-fno-math-errno", "-ffp-contract=off"]
+FLAGS = ["-std=c++17", "-O3", "-DNDEBUG", "-fno-math-errno", "-ffp-contract=off", "-pthread"]
 
 
 def parse_size(text: str) -> tuple[int, int]:
@@ -49,10 +55,12 @@ def compile_driver(build: Path) -> Path:
     return exe
 
 
-def run_size(exe: Path, n_x: int, n_y: int, leaf: int, mods: int) -> dict:
-    """The driver's "name value" lines for one lattice, as a dict."""
-    out = subprocess.run([str(exe), str(n_x), str(n_y), str(leaf), str(mods)],
-                         check=True, capture_output=True, text=True).stdout
+def run_size(exe: Path, n_x: int, n_y: int, leaf: int, mods: int, threads: list[int]) -> dict:
+    """The driver's "name value" lines for one lattice, as a dict (threads: the counts timed)."""
+    cmd = [str(exe), str(n_x), str(n_y), str(leaf), str(mods)]
+    if threads:
+        cmd.append(",".join(map(str, threads)))
+    out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
     values = {}
     for line in out.splitlines():
         name, value = line.split()
@@ -68,7 +76,11 @@ def main() -> None:
                     help="largest leaf of the dissection in nodes (0: the class's default)")
     ap.add_argument("--mods", type=int, default=50,
                     help="random springs whose downdate and update are timed (default 50)")
+    ap.add_argument("--threads", type=int, nargs="+", default=[],
+                    help="thread counts whose factorisation and solve are timed (e.g. 1 2)")
     args = ap.parse_args()
+    if any(t < 1 for t in args.threads):
+        raise SystemExit(f"--threads {args.threads} is out of range (each >= 1)")
     if args.leaf < 0:
         raise SystemExit(f"--leaf {args.leaf} is out of range (>= 0)")
     if args.mods < 1:
@@ -84,8 +96,10 @@ def main() -> None:
               "update (ms) | entries of L | factor (MB) | factorise scratch (MB) | tree nodes | "
               "depth | factorise GFlop/s | residual | after the downdates | fresh factor |")
         print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+        results = []
         for n_x, n_y in sizes:
-            v = run_size(exe, n_x, n_y, args.leaf, args.mods)
+            v = run_size(exe, n_x, n_y, args.leaf, args.mods, args.threads)
+            results.append(v)
             print(f"| {int(v['nodes']):,} | {int(v['free_dof']):,} | {v['analyse_s']:.3f} | "
                   f"{v['factorise_s']:.3f} | {v['solve_s']:.4f} | {1e3 * v['downdate_s']:.2f} | "
                   f"{1e3 * v['update_s']:.2f} | {v['factor_entries']:.3g} | "
@@ -94,6 +108,24 @@ def main() -> None:
                   f"{v['residual']:.1e} | {v['residual_after_downdates']:.1e} | "
                   f"{v['residual_fresh_factor']:.1e} |",
                   flush=True)
+        if args.threads:
+            print_threads(results, args.threads)
+
+
+def print_threads(results: list[dict], threads: list[int]) -> None:
+    """The thread counts' table: times, speed-ups over the first count, tasks, identity."""
+    first = threads[0]
+    print()
+    print("| nodes | threads | factorise (s) | speed-up | one solve, best of 5 (s) | speed-up | "
+          "solve tasks | factorise tasks | bit-identical |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for v in results:
+        for t in threads:
+            tf, ts = v[f"factorise_s_t{t}"], v[f"solve_best5_s_t{t}"]
+            print(f"| {int(v['nodes']):,} | {t} | {tf:.3f} | {v[f'factorise_s_t{first}'] / tf:.2f} | "
+                  f"{ts:.4f} | {v[f'solve_best5_s_t{first}'] / ts:.2f} | "
+                  f"{int(v[f'solve_tasks_t{t}'])} | {int(v[f'factorise_tasks_t{t}'])} | "
+                  f"{'yes' if v[f'identical_t{t}'] == 1.0 else 'NO'} |", flush=True)
 
 
 if __name__ == "__main__":

@@ -1,16 +1,22 @@
 // Timing of LatticeSparseCholesky on the scenes' triangular lattice (bench/sparse_cholesky.py
-// compiles and runs it).  Usage: sparse_cholesky_bench NX NY [LEAF] [MODS]
+// compiles and runs it).  Usage: sparse_cholesky_bench NX NY [LEAF] [MODS] [THREADS]
 // NX x NY nodes (rows along x, odd rows shifted by 1/2), 2 free dof per node, the bottom and
 // top rows held, one spring per nearest-neighbour pair with k Gaussian (mean 1, sd 0.15,
-// redrawn until positive).  Prints "name value" lines.
+// redrawn until positive).  THREADS: comma-separated thread counts (e.g. 1,2): per count, the
+// factorisation and the best of 5 solves of the same factor, and whether the factor and the
+// solution are bit-identical to those of the first count (a hash of their bits).  Prints
+// "name value" lines.
 
 #include "lattice_sparse_cholesky.h"
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <random>
+#include <string>
 #include <vector>
 
 using LAMMPS_NS::LatticeSparseCholesky;
@@ -46,6 +52,30 @@ double residual(const std::vector<LatticeSpring> &springs, const std::vector<uns
   return std::sqrt(num / den);
 }
 
+// FNV-1a over the bits of n doubles, folded into h
+std::uint64_t hash_bits(const double *v, std::size_t n, std::uint64_t h)
+{
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint64_t b;
+    std::memcpy(&b, v + i, sizeof b);
+    for (int q = 0; q < 8; ++q) {
+      h ^= (b >> (8 * q)) & 0xffu;
+      h *= 1099511628211ull;
+    }
+  }
+  return h;
+}
+
+std::uint64_t hash_factor(const LatticeSparseCholesky &chol)
+{
+  std::uint64_t h = 1469598103934665603ull;
+  for (int t = 0; t < chol.ntree(); ++t) {
+    const std::size_t n = chol.col_end(t) - chol.col_begin(t);
+    h = hash_bits(chol.block(t), (n + chol.nrows(t)) * n, h);
+  }
+  return h;
+}
+
 }    // namespace
 
 int main(int argc, char **argv)
@@ -57,6 +87,18 @@ int main(int argc, char **argv)
   const int nx = std::atoi(argv[1]), ny = std::atoi(argv[2]);
   const int leaf = argc > 3 ? std::atoi(argv[3]) : 0;
   const int mods = argc > 4 ? std::atoi(argv[4]) : 50;
+  std::vector<int> thread_counts;
+  if (argc > 5)
+    for (const char *p = argv[5]; *p;) {
+      char *end = nullptr;
+      const long v = std::strtol(p, &end, 10);
+      if (end == p || v < 1) {
+        std::fprintf(stderr, "THREADS %s: comma-separated counts >= 1 expected\n", argv[5]);
+        return 2;
+      }
+      thread_counts.push_back((int) v);
+      p = (*end == ',') ? end + 1 : end;
+    }
   const int n = nx * ny;
   std::vector<double> coords;
   const double row = std::sqrt(3.0) / 2.0;
@@ -119,6 +161,35 @@ int main(int argc, char **argv)
   chol.solve(x.data());
   const double t_solve = seconds_since(t0);
   const double res = residual(springs, free, shift, x, b);
+
+  // the same factorisation and solve on each thread count
+  std::uint64_t h_factor0 = 0, h_x0 = 0;
+  for (std::size_t q = 0; q < thread_counts.size(); ++q) {
+    const int nt = thread_counts[q];
+    chol.set_threads(nt);
+    t0 = std::chrono::steady_clock::now();
+    chol.factorise(springs, shift);
+    const double tf = seconds_since(t0);
+    double ts = 1e30;
+    std::vector<double> xt;
+    for (int rep = 0; rep < 5; ++rep) {
+      xt = b;
+      t0 = std::chrono::steady_clock::now();
+      chol.solve(xt.data());
+      ts = std::min(ts, seconds_since(t0));
+    }
+    const std::uint64_t hf = hash_factor(chol), hx = hash_bits(xt.data(), xt.size(), 1469598103934665603ull);
+    if (q == 0) {
+      h_factor0 = hf;
+      h_x0 = hx;
+    }
+    const std::string tag = "_t" + std::to_string(nt);
+    std::printf("factorise_s%s %.4f\nsolve_best5_s%s %.5f\n", tag.c_str(), tf, tag.c_str(), ts);
+    std::printf("solve_tasks%s %d\nfactorise_tasks%s %d\n", tag.c_str(), chol.solve_tasks(),
+                tag.c_str(), chol.factorise_tasks());
+    std::printf("identical%s %d\n", tag.c_str(), (int) (hf == h_factor0 && hx == h_x0));
+  }
+  chol.set_threads(1);
 
   // downdates of distinct random springs, then the same springs added back
   std::vector<std::size_t> pick;

@@ -5,18 +5,121 @@
    central-spring stiffness matrix, with rank-one updates and downdates
    along the elimination tree (lattice_sparse_cholesky.h).  The dense
    kernels (panel Cholesky, packed 4 x 4 symmetric rank-k update) are
-   written out here: no BLAS.
+   written out here: no BLAS.  Threads: a small pool (LatticeThreadPool)
+   runs disjoint subtrees and the row blocks of large rank-k updates; the
+   header explains why the results do not depend on the number of threads.
 ------------------------------------------------------------------------- */
 
 #include "lattice_sparse_cholesky.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
+#include <exception>
+#include <functional>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 using namespace LAMMPS_NS;
+
+/* ----------------------------------------------------------------------
+   a pool of nthreads - 1 workers waiting on a condition variable; run()
+   hands out the tasks 0..ntask-1 (an atomic counter) to the workers and the
+   calling thread (thread 0) and returns when all are done, rethrowing the
+   exception of the lowest task that threw.  One run() at a time.
+------------------------------------------------------------------------- */
+
+namespace LAMMPS_NS {
+class LatticeThreadPool {
+ public:
+  explicit LatticeThreadPool(int nthreads)
+  {
+    for (int id = 1; id < nthreads; ++id) workers_.emplace_back([this, id] { work(id); });
+  }
+  ~LatticeThreadPool()
+  {
+    {
+      std::lock_guard<std::mutex> lk(m_);
+      stop_ = true;
+    }
+    start_.notify_all();
+    for (auto &w : workers_) w.join();
+  }
+  int size() const { return (int) workers_.size() + 1; }
+
+  void run(int ntask, const std::function<void(int, int)> &fn)
+  {
+    if (ntask <= 0) return;
+    std::lock_guard<std::mutex> one(run_m_);
+    if (workers_.empty() || ntask == 1) {
+      for (int k = 0; k < ntask; ++k) fn(k, 0);
+      return;
+    }
+    {
+      std::lock_guard<std::mutex> lk(m_);
+      job_ = &fn;
+      ntask_ = ntask;
+      next_.store(0);
+      busy_ = (int) workers_.size();
+      error_ = nullptr;
+      error_task_ = ntask;
+      ++generation_;
+    }
+    start_.notify_all();
+    take(0);
+    std::unique_lock<std::mutex> lk(m_);
+    done_.wait(lk, [this] { return busy_ == 0; });
+    job_ = nullptr;
+    if (error_) std::rethrow_exception(error_);
+  }
+
+ private:
+  std::vector<std::thread> workers_;
+  std::mutex m_, run_m_;
+  std::condition_variable start_, done_;
+  const std::function<void(int, int)> *job_ = nullptr;
+  int ntask_ = 0, busy_ = 0, error_task_ = 0;
+  std::atomic<int> next_{0};
+  unsigned long generation_ = 0;
+  bool stop_ = false;
+  std::exception_ptr error_;
+
+  void take(int id)
+  {
+    for (int k = next_.fetch_add(1); k < ntask_; k = next_.fetch_add(1)) {
+      try {
+        (*job_)(k, id);
+      } catch (...) {
+        std::lock_guard<std::mutex> lk(m_);
+        if (k < error_task_) {
+          error_ = std::current_exception();
+          error_task_ = k;
+        }
+      }
+    }
+  }
+
+  void work(int id)
+  {
+    unsigned long seen = 0;
+    for (;;) {
+      {
+        std::unique_lock<std::mutex> lk(m_);
+        start_.wait(lk, [&] { return stop_ || generation_ != seen; });
+        if (stop_) return;
+        seen = generation_;
+      }
+      take(id);
+      std::lock_guard<std::mutex> lk(m_);
+      if (--busy_ == 0) done_.notify_one();
+    }
+  }
+};
+}    // namespace LAMMPS_NS
 
 namespace {
 
@@ -38,39 +141,21 @@ inline void kernel4x4(const double *a, const double *b, int K, double *acc)
   for (int q = 0; q < 16; ++q) acc[q] = c[q];
 }
 
-// C -= A A^T on the lower triangle of C (N x N, leading dimension ldc);
-// A is N x K (leading dimension lda); pack is scratch
-void syrk_lower(int N, int K, const double *A, int lda, double *C, int ldc, std::vector<double> &pack)
+// fronts whose trailing matrix has fewer rows than this update it on one thread
+constexpr int SYRK_PARALLEL_ROWS = 128;
+
+// the 4-row blocks ib0 <= ib < ib1 of C -= A A^T (lower triangle) from the packed A
+void syrk_rows(int N, int K, const double *pack, int nb4, int ib0, int ib1, double *C, int ldc)
 {
-  if (N <= 0 || K <= 0) return;
-  const int nb4 = (N + 3) / 4;
-  pack.resize((std::size_t) nb4 * 4 * K);
-  for (int ib = 0; ib < nb4; ++ib) {
-    double *p = pack.data() + (std::size_t) ib * 4 * K;
-    const int i0 = 4 * ib;
-    if (i0 + 4 <= N) {
-      for (int k = 0; k < K; ++k) {
-        const double *a = A + i0 + (std::size_t) k * lda;
-        p[4 * k] = a[0];
-        p[4 * k + 1] = a[1];
-        p[4 * k + 2] = a[2];
-        p[4 * k + 3] = a[3];
-      }
-    } else {
-      for (int k = 0; k < K; ++k)
-        for (int ii = 0; ii < 4; ++ii)
-          p[4 * k + ii] = (i0 + ii < N) ? A[i0 + ii + (std::size_t) k * lda] : 0.0;
-    }
-  }
   double acc[16];
-  for (int jb0 = 0; jb0 < nb4; jb0 += SYRK_CHUNK) {
+  for (int jb0 = 0; jb0 < nb4 && jb0 < ib1; jb0 += SYRK_CHUNK) {
     const int jb1 = std::min(jb0 + SYRK_CHUNK, nb4);
-    for (int ib = jb0; ib < nb4; ++ib) {
-      const double *pa = pack.data() + (std::size_t) ib * 4 * K;
+    for (int ib = std::max(jb0, ib0); ib < ib1; ++ib) {
+      const double *pa = pack + (std::size_t) ib * 4 * K;
       const int i0 = 4 * ib;
       const int jend = std::min(jb1, ib + 1);
       for (int jb = jb0; jb < jend; ++jb) {
-        kernel4x4(pa, pack.data() + (std::size_t) jb * 4 * K, K, acc);
+        kernel4x4(pa, pack + (std::size_t) jb * 4 * K, K, acc);
         const int j0 = 4 * jb;
         if (jb < ib && i0 + 4 <= N) {
           for (int jj = 0; jj < 4; ++jj) {
@@ -92,11 +177,57 @@ void syrk_lower(int N, int K, const double *A, int lda, double *C, int ldc, std:
   }
 }
 
+// C -= A A^T on the lower triangle of C (N x N, leading dimension ldc);
+// A is N x K (leading dimension lda); pack is scratch.  With a pool (and N
+// large) the row blocks are split over its threads: each 4 x 4 block of C is
+// still one kernel4x4 over all K, subtracted once (the same bits)
+void syrk_lower(int N, int K, const double *A, int lda, double *C, int ldc, std::vector<double> &pack,
+                LatticeThreadPool *pool)
+{
+  if (N <= 0 || K <= 0) return;
+  const int nb4 = (N + 3) / 4;
+  pack.resize((std::size_t) nb4 * 4 * K);
+  for (int ib = 0; ib < nb4; ++ib) {
+    double *p = pack.data() + (std::size_t) ib * 4 * K;
+    const int i0 = 4 * ib;
+    if (i0 + 4 <= N) {
+      for (int k = 0; k < K; ++k) {
+        const double *a = A + i0 + (std::size_t) k * lda;
+        p[4 * k] = a[0];
+        p[4 * k + 1] = a[1];
+        p[4 * k + 2] = a[2];
+        p[4 * k + 3] = a[3];
+      }
+    } else {
+      for (int k = 0; k < K; ++k)
+        for (int ii = 0; ii < 4; ++ii)
+          p[4 * k + ii] = (i0 + ii < N) ? A[i0 + ii + (std::size_t) k * lda] : 0.0;
+    }
+  }
+  if (!pool || pool->size() < 2 || N < SYRK_PARALLEL_ROWS) {
+    syrk_rows(N, K, pack.data(), nb4, 0, nb4, C, ldc);
+    return;
+  }
+  // 2 pieces per thread of about equal area of the lower triangle (rows up to ib: ~ ib^2 / 2)
+  const int npiece = 2 * pool->size();
+  std::vector<int> cut(npiece + 1, nb4);
+  for (int q = 0; q < npiece; ++q)
+    cut[q] = (int) std::lround(nb4 * std::sqrt((double) q / npiece));
+  cut[npiece] = nb4;
+  pool->run(npiece, [&](int q, int) {
+    // the pieces by decreasing area: the last (largest) first
+    const int piece = npiece - 1 - q;
+    if (cut[piece] < cut[piece + 1])
+      syrk_rows(N, K, pack.data(), nb4, cut[piece], cut[piece + 1], C, ldc);
+  });
+}
+
 // Cholesky of the first n columns of the m x m lower triangle F (leading
 // dimension m): F[:, 0:n] becomes L's columns, F[n:m, n:m] the Schur
 // complement.  Returns the first column whose pivot is not positive (or not
 // finite), -1 on success; pivot is set to its value
-int partial_cholesky(double *F, int m, int n, std::vector<double> &pack, double &pivot)
+int partial_cholesky(double *F, int m, int n, std::vector<double> &pack, LatticeThreadPool *pool,
+                     double &pivot)
 {
   for (int k0 = 0; k0 < n; k0 += PANEL) {
     const int k1 = std::min(k0 + PANEL, n);
@@ -120,12 +251,49 @@ int partial_cholesky(double *F, int m, int n, std::vector<double> &pack, double 
     }
     if (k1 < m)
       syrk_lower(m - k1, k1 - k0, F + k1 + (std::size_t) k0 * m, m, F + k1 + (std::size_t) k1 * m,
-                 m, pack);
+                 m, pack, pool);
   }
   return -1;
 }
 
+// below these totals (block entries; flops) a call runs on one thread
+constexpr double MIN_PARALLEL_SOLVE = 2e4;
+constexpr double MIN_PARALLEL_FACTOR = 2e6;
+// most tasks a plan splits the tree into
+constexpr int MAX_TASKS = 64;
+
 }    // namespace
+
+// factorise's working set on one thread: the frontal matrix, the update stack
+// (entries: an update matrix, its tree node, the stack's top before it) and scratch
+struct LatticeSparseCholesky::Front {
+  struct Entry {
+    const double *U;
+    int tree;
+    std::size_t top_before;
+  };
+  std::vector<double> F, stack, pack;
+  std::vector<int> loc;
+  std::vector<Entry> entries;
+  std::size_t top = 0;
+};
+
+/* ---------------------------------------------------------------------- */
+
+LatticeSparseCholesky::LatticeSparseCholesky() = default;
+LatticeSparseCholesky::~LatticeSparseCholesky() = default;
+
+void LatticeSparseCholesky::set_threads(int n)
+{
+  if (n < 1)
+    throw std::invalid_argument("LatticeSparseCholesky: threads " + std::to_string(n) +
+                                " is out of range (>= 1)");
+  if (n == threads_) return;
+  threads_ = n;
+  pool_.reset();
+  if (n > 1) pool_ = std::make_unique<LatticeThreadPool>(n);
+  make_plans();
+}
 
 /* ---------------------------------------------------------------------- */
 
@@ -217,6 +385,7 @@ void LatticeSparseCholesky::analyse(int dim, int nnodes, const double *coords,
     if (free[c]) dof_col_[c] = -2;    // free, not numbered yet
   dissect(nodes, coords, mark, stamp, roots, node_tree);
   symbolic();
+  make_plans();
 }
 
 /* ----------------------------------------------------------------------
@@ -412,6 +581,123 @@ void LatticeSparseCholesky::symbolic()
   }
 }
 
+/* ----------------------------------------------------------------------
+   the plans of solve() and factorise() for threads_ threads (after symbolic)
+------------------------------------------------------------------------- */
+
+void LatticeSparseCholesky::make_plans()
+{
+  solve_plan_ = Plan();
+  factor_plan_ = Plan();
+  const int ntree = (int) tree_.size();
+  if (threads_ < 2 || ntree < 2) return;
+  std::vector<double> entries(ntree), flops(ntree);
+  for (int t = 0; t < ntree; ++t) {
+    const double n = tree_[t].ncol, r = tree_[t].nrow, m = n + r;
+    entries[t] = m * n;
+    flops[t] = n * n * n / 3.0 + r * n * n + r * r * n + m * m;
+  }
+  solve_plan_ = make_plan(entries, 1.0, MIN_PARALLEL_SOLVE);
+  // factorise's top: its rank-k updates run on all the threads, the rest (panels, assembly) on one
+  factor_plan_ = make_plan(flops, 0.25 + 0.75 / threads_, MIN_PARALLEL_FACTOR);
+
+  // solve: the products a task's node keeps for the top's rows (R_t beyond the task's columns)
+  Plan &sp = solve_plan_;
+  if (!sp.roots.empty()) {
+    sp.defer_off.assign(ntree + 1, 0);
+    for (int t = 0; t < ntree; ++t) {
+      std::size_t nkept = 0;
+      if (sp.task_of[t] >= 0) {
+        const int end = col_end(sp.roots[sp.task_of[t]]);
+        const int *R = rows(t);
+        nkept = (R + tree_[t].nrow) - std::lower_bound(R, R + tree_[t].nrow, end);
+      }
+      sp.defer_off[t + 1] = sp.defer_off[t] + nkept;
+    }
+  }
+  // factorise: the largest frontal matrix and update stack of a task (symbolic()'s
+  // post-order stack over the task's subtree)
+  Plan &fp = factor_plan_;
+  for (int root : fp.roots) {
+    std::vector<std::size_t> sizes;
+    std::size_t total = 0;
+    for (int t = first_desc_[root]; t <= root; ++t) {
+      for (int q = 0; q < tree_[t].nchild; ++q) {
+        total -= sizes.back();
+        sizes.pop_back();
+      }
+      const std::size_t r = tree_[t].nrow, m = (std::size_t) tree_[t].ncol + r;
+      sizes.push_back(r * (r + 1) / 2);
+      total += sizes.back();
+      fp.stack = std::max(fp.stack, total);
+      fp.front = std::max(fp.front, m * m);
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   the task roots for the cost of each tree node: from the roots of the
+   forest, the costliest subtree that has children is split (its root goes
+   to the top) up to MAX_TASKS tasks; the split with the least estimated time
+   (top_weight x the top's cost + the largest load of the threads when the
+   tasks are dealt out by decreasing cost to the least loaded) is kept.  No
+   tasks if the total is below min_cost or the best has one task
+------------------------------------------------------------------------- */
+
+LatticeSparseCholesky::Plan LatticeSparseCholesky::make_plan(const std::vector<double> &cost,
+                                                             double top_weight,
+                                                             double min_cost) const
+{
+  Plan plan;
+  const int ntree = (int) tree_.size();
+  std::vector<double> sub(cost);    // the subtrees' costs (children come before parents)
+  double total = 0.0;
+  for (int t = 0; t < ntree; ++t) {
+    total += cost[t];
+    if (tree_[t].parent >= 0) sub[tree_[t].parent] += sub[t];
+  }
+  if (threads_ < 2 || total < min_cost) return plan;
+  std::vector<int> tasks, best;
+  for (int t = 0; t < ntree; ++t)
+    if (tree_[t].parent < 0) tasks.push_back(t);
+  double top = 0.0, best_time = total;
+  std::vector<double> load(threads_), c;
+  for (;;) {
+    if (tasks.size() >= 2) {
+      c.clear();
+      for (int t : tasks) c.push_back(sub[t]);
+      std::sort(c.begin(), c.end(), [](double a, double b) { return a > b; });
+      std::fill(load.begin(), load.end(), 0.0);
+      for (double x : c) *std::min_element(load.begin(), load.end()) += x;
+      const double time = top_weight * top + *std::max_element(load.begin(), load.end());
+      if (time < best_time) {
+        best_time = time;
+        best = tasks;
+      }
+    }
+    int pick = -1;
+    for (int q = 0; q < (int) tasks.size(); ++q)
+      if (tree_[tasks[q]].nchild > 0 && (pick < 0 || sub[tasks[q]] > sub[tasks[pick]])) pick = q;
+    if (pick < 0 || (int) tasks.size() - 1 + tree_[tasks[pick]].nchild > MAX_TASKS) break;
+    const int t = tasks[pick];
+    top += cost[t];
+    tasks.erase(tasks.begin() + pick);
+    for (int q = 0; q < nchildren(t); ++q) tasks.push_back(child(t, q));
+  }
+  if (best.size() < 2) return plan;
+  std::sort(best.begin(), best.end());
+  const int ntask = (int) best.size();
+  plan.roots = best;
+  plan.task_of.assign(ntree, -1);
+  for (int k = 0; k < ntask; ++k)
+    for (int t = first_desc_[best[k]]; t <= best[k]; ++t) plan.task_of[t] = k;
+  plan.order.resize(ntask);
+  for (int k = 0; k < ntask; ++k) plan.order[k] = k;
+  std::stable_sort(plan.order.begin(), plan.order.end(),
+                   [&](int a, int b) { return sub[best[a]] > sub[best[b]]; });
+  return plan;
+}
+
 /* ---------------------------------------------------------------------- */
 
 bool LatticeSparseCholesky::in_pattern(int a, int b) const
@@ -503,72 +789,137 @@ void LatticeSparseCholesky::factorise(const std::vector<LatticeSpring> &springs,
   }
 
   factor_.resize(factor_size_);    // every entry is written below (the blocks tile it)
-  std::vector<double> F(max_front_), stack(max_stack_), pack;
-  std::vector<std::size_t> stack_off;
-  std::vector<int> stack_tree, loc(ncols_, -1);
-  std::size_t top = 0;
-  int cols[6];
-  double vals[6];
+  Front top;
+  top.F.resize(max_front_);
+  top.stack.resize(max_stack_);
+  top.loc.assign(ncols_, -1);
+  double pivot = 0.0;
+  const Plan &pl = factor_plan_;
+  if (!pool_ || pl.roots.empty()) {
+    for (int t = 0; t < ntree; ++t) {
+      const int bad = factor_node(t, top, springs, off.data(), bucket.data(), shift, nullptr, pivot);
+      if (bad >= 0) pivot_error(bad, pivot, "factorise");
+    }
+    factorised_ = true;
+    return;
+  }
 
+  // the tasks: each subtree's sweep on one thread, its root's update matrix kept
+  const int ntask = (int) pl.roots.size();
+  std::vector<Front> fronts(pool_->size());
+  std::vector<std::vector<double>> update(ntask);
+  std::vector<int> bad_col(ntask, -1);
+  std::vector<double> bad_pivot(ntask, 0.0);
+  pool_->run(ntask, [&](int q, int thread) {
+    const int k = pl.order[q], root = pl.roots[k];
+    Front &fr = fronts[thread];
+    if (fr.loc.empty()) {
+      fr.F.resize(pl.front);
+      fr.stack.resize(pl.stack);
+      fr.loc.assign(ncols_, -1);
+    }
+    fr.entries.clear();
+    fr.top = 0;
+    for (int t = first_desc_[root]; t <= root; ++t) {
+      double pv = 0.0;
+      const int bad = factor_node(t, fr, springs, off.data(), bucket.data(), shift, nullptr, pv);
+      if (bad >= 0) {
+        bad_col[k] = bad;
+        bad_pivot[k] = pv;
+        return;
+      }
+    }
+    const std::size_t r = tree_[root].nrow;
+    update[k].assign(fr.entries.back().U, fr.entries.back().U + r * (r + 1) / 2);
+  });
+  fronts.clear();
+
+  // the top in post-order; a task's failure or update matrix where its root comes
   for (int t = 0; t < ntree; ++t) {
-    const TreeNode &tn = tree_[t];
-    const int n = tn.ncol, r = tn.nrow, m = n + r;
-    const int c0 = tn.col0, c1 = tn.col0 + n;
-    const int *R = rows_.data() + tn.rows_off;
-    for (int j = 0; j < m; ++j)
-      std::fill(F.begin() + (std::size_t) j * m + j, F.begin() + (std::size_t) (j + 1) * m, 0.0);
-    for (int i = 0; i < n; ++i) loc[c0 + i] = i;
-    for (int p = 0; p < r; ++p) loc[R[p]] = n + p;
-
-    // the springs' entries in the columns of t, and the shift
-    for (int q = off[t]; q < off[t + 1]; ++q) {
-      const LatticeSpring &s = springs[bucket[q]];
-      const int nv = spring_vector(s, cols, vals);
-      for (int a = 0; a < nv; ++a) {
-        if (cols[a] < c0 || cols[a] >= c1) continue;
-        const int lj = cols[a] - c0;
-        for (int b = 0; b < nv; ++b)
-          if (cols[b] >= cols[a]) F[(std::size_t) lj * m + loc[cols[b]]] += s.k * vals[a] * vals[b];
-      }
+    const int k = pl.task_of[t];
+    if (k >= 0) {
+      if (t != pl.roots[k]) continue;
+      if (bad_col[k] >= 0) pivot_error(bad_col[k], bad_pivot[k], "factorise");
+      top.entries.push_back({update[k].data(), t, top.top});
+      continue;
     }
-    for (int i = 0; i < n; ++i) F[(std::size_t) i * m + i] += shift;
-
-    // extend-add of the children's update matrices (the top of the stack)
-    const int nchild = tn.nchild;
-    for (int q = (int) stack_tree.size() - nchild; q < (int) stack_tree.size(); ++q) {
-      const TreeNode &ch = tree_[stack_tree[q]];
-      const int rc = ch.nrow;
-      const int *Rc = rows_.data() + ch.rows_off;
-      const double *U = stack.data() + stack_off[q];
-      for (int b = 0; b < rc; ++b) {
-        double *col = F.data() + (std::size_t) loc[Rc[b]] * m;
-        for (int a = b; a < rc; ++a) col[loc[Rc[a]]] += *U++;
-      }
-    }
-    if (nchild > 0) {
-      top = stack_off[stack_tree.size() - nchild];
-      stack_tree.resize(stack_tree.size() - nchild);
-      stack_off.resize(stack_off.size() - nchild);
-    }
-
-    double pivot = 0.0;
-    const int bad = partial_cholesky(F.data(), m, n, pack, pivot);
-    if (bad >= 0) pivot_error(c0 + bad, pivot, "factorise");
-    std::memcpy(factor_.data() + tn.block_off, F.data(), sizeof(double) * (std::size_t) m * n);
-    for (int j = 0; j < n; ++j)    // the strict upper triangle of the diagonal block: zeros
-      std::fill(factor_.begin() + tn.block_off + (std::size_t) j * m,
-                factor_.begin() + tn.block_off + (std::size_t) j * m + j, 0.0);
-
-    // the Schur complement on R_t, packed lower, onto the stack
-    stack_off.push_back(top);
-    stack_tree.push_back(t);
-    for (int b = n; b < m; ++b) {
-      const double *col = F.data() + (std::size_t) b * m;
-      std::copy(col + b, col + m, stack.data() + top);
-      top += m - b;
-    }
+    const int bad = factor_node(t, top, springs, off.data(), bucket.data(), shift, pool_.get(), pivot);
+    if (bad >= 0) pivot_error(bad, pivot, "factorise");
   }
   factorised_ = true;
+}
+
+/* ----------------------------------------------------------------------
+   the front of tree node t on fr: the springs' entries and the shift, the
+   extend-add of the children's update matrices (the last entries of fr's
+   stack, in order), the partial Cholesky (its rank-k updates on pool's
+   threads if given), L_t into the factor, the update matrix pushed.
+   Returns -1, or the column whose pivot failed (its value in pivot)
+------------------------------------------------------------------------- */
+
+int LatticeSparseCholesky::factor_node(int t, Front &fr, const std::vector<LatticeSpring> &springs,
+                                       const int *off, const int *bucket, double shift,
+                                       LatticeThreadPool *pool, double &pivot)
+{
+  const TreeNode &tn = tree_[t];
+  const int n = tn.ncol, r = tn.nrow, m = n + r;
+  const int c0 = tn.col0, c1 = tn.col0 + n;
+  const int *R = rows_.data() + tn.rows_off;
+  if (fr.F.size() < (std::size_t) m * m) fr.F.resize((std::size_t) m * m);
+  double *F = fr.F.data();
+  int *loc = fr.loc.data();
+  for (int j = 0; j < m; ++j) std::fill(F + (std::size_t) j * m + j, F + (std::size_t) (j + 1) * m, 0.0);
+  for (int i = 0; i < n; ++i) loc[c0 + i] = i;
+  for (int p = 0; p < r; ++p) loc[R[p]] = n + p;
+
+  // the springs' entries in the columns of t, and the shift
+  int cols[6];
+  double vals[6];
+  for (int q = off[t]; q < off[t + 1]; ++q) {
+    const LatticeSpring &s = springs[bucket[q]];
+    const int nv = spring_vector(s, cols, vals);
+    for (int a = 0; a < nv; ++a) {
+      if (cols[a] < c0 || cols[a] >= c1) continue;
+      const int lj = cols[a] - c0;
+      for (int b = 0; b < nv; ++b)
+        if (cols[b] >= cols[a]) F[(std::size_t) lj * m + loc[cols[b]]] += s.k * vals[a] * vals[b];
+    }
+  }
+  for (int i = 0; i < n; ++i) F[(std::size_t) i * m + i] += shift;
+
+  // extend-add of the children's update matrices (the top of the stack)
+  const int nchild = tn.nchild;
+  const std::size_t ne = fr.entries.size();
+  for (std::size_t q = ne - nchild; q < ne; ++q) {
+    const TreeNode &ch = tree_[fr.entries[q].tree];
+    const int rc = ch.nrow;
+    const int *Rc = rows_.data() + ch.rows_off;
+    const double *U = fr.entries[q].U;
+    for (int b = 0; b < rc; ++b) {
+      double *col = F + (std::size_t) loc[Rc[b]] * m;
+      for (int a = b; a < rc; ++a) col[loc[Rc[a]]] += *U++;
+    }
+  }
+  if (nchild > 0) {
+    fr.top = fr.entries[ne - nchild].top_before;
+    fr.entries.resize(ne - nchild);
+  }
+
+  const int bad = partial_cholesky(F, m, n, fr.pack, pool, pivot);
+  if (bad >= 0) return c0 + bad;
+  std::memcpy(factor_.data() + tn.block_off, F, sizeof(double) * (std::size_t) m * n);
+  for (int j = 0; j < n; ++j)    // the strict upper triangle of the diagonal block: zeros
+    std::fill(factor_.begin() + tn.block_off + (std::size_t) j * m,
+              factor_.begin() + tn.block_off + (std::size_t) j * m + j, 0.0);
+
+  // the Schur complement on R_t, packed lower, onto the stack
+  fr.entries.push_back({fr.stack.data() + fr.top, t, fr.top});
+  for (int b = n; b < m; ++b) {
+    const double *col = F + (std::size_t) b * m;
+    std::copy(col + b, col + m, fr.stack.data() + fr.top);
+    fr.top += m - b;
+  }
+  return -1;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -578,11 +929,65 @@ void LatticeSparseCholesky::solve(double *x) const
   if (!factorised_)
     throw std::logic_error("LatticeSparseCholesky::solve: no factor (factorise() first)");
   const int ntree = (int) tree_.size();
-  std::vector<double> w(ncols_), v(max_rows_);
-  for (int col = 0; col < ncols_; ++col) w[col] = x[col_dof_[col]];
-  for (int t = 0; t < ntree; ++t) forward_block(t, w.data(), v.data());
-  for (int t = ntree - 1; t >= 0; --t) back_block(t, w.data(), v.data());
-  for (int col = 0; col < ncols_; ++col) x[col_dof_[col]] = w[col];
+  const Plan &pl = solve_plan_;
+  if (!pool_ || pl.roots.empty()) {
+    std::vector<double> w(ncols_), v(max_rows_);
+    for (int col = 0; col < ncols_; ++col) w[col] = x[col_dof_[col]];
+    for (int t = 0; t < ntree; ++t) forward_block(t, w.data(), v.data());
+    for (int t = ntree - 1; t >= 0; --t) back_block(t, w.data(), v.data());
+    for (int col = 0; col < ncols_; ++col) x[col_dof_[col]] = w[col];
+    return;
+  }
+
+  const int ntask = (int) pl.roots.size();
+  std::unique_ptr<double[]> wbuf(new double[ncols_]);    // every entry gathered below
+  double *w = wbuf.get();
+  std::vector<double> kept(pl.defer_off[ntree]);
+  std::vector<std::vector<double>> scratch(pool_->size(), std::vector<double>(max_rows_));
+  // the q-th task run (by decreasing cost): its subtree [first, root], its columns [c0, c1)
+  struct Range {
+    int first, root, c0, c1;
+  };
+  auto range = [&](int q) {
+    const int root = pl.roots[pl.order[q]], first = first_desc_[root];
+    return Range{first, root, tree_[first].col0, col_end(root)};
+  };
+
+  // forward, the tasks: w gathered on their columns; the products for the
+  // top's rows kept
+  pool_->run(ntask, [&](int q, int thread) {
+    const Range r = range(q);
+    for (int col = r.c0; col < r.c1; ++col) w[col] = x[col_dof_[col]];
+    for (int t = r.first; t <= r.root; ++t) {
+      const int nkept = (int) (pl.defer_off[t + 1] - pl.defer_off[t]);
+      forward_rows(t, w, scratch[thread].data(), tree_[t].nrow - nkept, kept.data() + pl.defer_off[t]);
+    }
+  });
+  // forward, the top: gathered, then the post-order walk (the serial order of the additions)
+  double *v = scratch[0].data();
+  for (int t = 0; t < ntree; ++t)
+    if (pl.task_of[t] < 0)
+      for (int col = tree_[t].col0; col < col_end(t); ++col) w[col] = x[col_dof_[col]];
+  for (int t = 0; t < ntree; ++t) {
+    if (pl.task_of[t] < 0) {
+      forward_rows(t, w, v, tree_[t].nrow, nullptr);
+      continue;
+    }
+    const std::size_t o = pl.defer_off[t], nkept = pl.defer_off[t + 1] - o;
+    const int *R = rows(t) + (tree_[t].nrow - nkept);
+    for (std::size_t p = 0; p < nkept; ++p) w[R[p]] += kept[o + p];
+  }
+  // back: the top, then the tasks
+  for (int t = ntree - 1; t >= 0; --t)
+    if (pl.task_of[t] < 0) {
+      back_block(t, w, v);
+      for (int col = tree_[t].col0; col < col_end(t); ++col) x[col_dof_[col]] = w[col];
+    }
+  pool_->run(ntask, [&](int q, int thread) {
+    const Range r = range(q);
+    for (int t = r.root; t >= r.first; --t) back_block(t, w, scratch[thread].data());
+    for (int col = r.c0; col < r.c1; ++col) x[col_dof_[col]] = w[col];
+  });
 }
 
 /* ---------------------------------------------------------------------- */
@@ -602,6 +1007,14 @@ const double *LatticeSparseCholesky::load_block(int t, const double *w, double *
 
 void LatticeSparseCholesky::forward_block(int t, double *w, double *scratch) const
 {
+  forward_rows(t, w, scratch, tree_[t].nrow, nullptr);
+}
+
+// forward_block, its products for the rows R_t[nrow_w..) stored in kept instead of
+// added into w
+void LatticeSparseCholesky::forward_rows(int t, double *w, double *scratch, int nrow_w,
+                                         double *kept) const
+{
   int n, m;
   const double *L = load_block(t, w, scratch, false, n, m);
   double *y = scratch;
@@ -613,9 +1026,9 @@ void LatticeSparseCholesky::forward_block(int t, double *w, double *scratch) con
   }
   std::copy(y, y + n, w + tree_[t].col0);
   const int *R = rows(t);
-  for (int p = 0; p < m - n; ++p) w[R[p]] += y[n + p];
+  for (int p = 0; p < nrow_w; ++p) w[R[p]] += y[n + p];
+  for (int p = nrow_w; p < m - n; ++p) kept[p - nrow_w] = y[n + p];
 }
-
 void LatticeSparseCholesky::back_block(int t, double *w, double *scratch) const
 {
   int n, m;

@@ -47,13 +47,47 @@
    from the nodes' blocks to the root: the cost is the size of the blocks
    on that path, not of the factor.
 
-   All results are deterministic: one thread, a fixed order of operations.
+   Threads (set_threads, default 1): factorise() and solve() run disjoint
+   subtrees of the separator tree at the same time; modify() is one path and
+   stays serial.  The plan (made by analyse() and set_threads()) picks task
+   roots by splitting the costliest subtree greedily, from the roots of the
+   forest down to at most 64 tasks, and keeps the split of least estimated
+   time (the tree nodes above the tasks, "the top", on one thread; the tasks
+   dealt to the threads by decreasing cost); solve() and factorise() have
+   their own plans (costs: the block entries m_t n_t; the flops).  Each task
+   is a range [first_descendant(r), r] of the post-order.  The threads are a
+   small pool kept by the object (set_threads() starts them; they wait on a
+   condition variable between calls, so a call costs no thread start-up).
+     Results are bit-identical for any number of threads (and to the serial
+   code): every floating-point operation, and for every variable the order of
+   the operations on it, is that of the serial post-order sweep.
+   - forward: a task's blocks add their products into the rows of R_t inside
+     the task's subtree (only that task writes them, in post-order); the rows
+     of R_t above the task (the suffix of R_t beyond col_end(r), the top's
+     columns) are kept in a buffer per tree node.  Then one thread walks the
+     post-order: a top node's forward_block, a task node's kept products added
+     into the top's rows.  Each entry of w therefore receives its additions in
+     the serial order.
+   - back: the top in reverse post-order on one thread, then the tasks: a
+     block reads w on R_t (final) and writes its own columns only.
+   - factorise: a task runs the multifrontal sweep of its subtree with its own
+     frontal matrix and update stack, and leaves its root's update matrix in a
+     buffer.  The top is then factorised in post-order on the calling thread,
+     the children's update matrices extend-added in the serial order; the
+     symmetric rank-k update of a large front is split into disjoint row
+     blocks over the threads (every 4 x 4 block of C is formed by one kernel
+     call over the whole k range and subtracted once, whoever computes it).
+     A pivot that fails in a task is reported when the walk reaches the task:
+     the error is the serial one (the first bad pivot in post-order).
+   Small problems (a plan with one task, or below a minimum of work) run on
+   the calling thread alone.  An object runs one threaded call at a time.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_LATTICE_SPARSE_CHOLESKY_H
 #define LMP_LATTICE_SPARSE_CHOLESKY_H
 
 #include <cstddef>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -67,8 +101,23 @@ struct LatticeSpring {
   double n[3];
 };
 
+class LatticeThreadPool;    // lattice_sparse_cholesky.cpp
+
 class LatticeSparseCholesky {
  public:
+  LatticeSparseCholesky();
+  ~LatticeSparseCholesky();
+  LatticeSparseCholesky(const LatticeSparseCholesky &) = delete;
+  LatticeSparseCholesky &operator=(const LatticeSparseCholesky &) = delete;
+
+  // threads of factorise() and solve() (default 1; results bit-identical for
+  // any number); std::invalid_argument below 1.  Any time (the plan is remade)
+  void set_threads(int n);
+  int threads() const { return threads_; }
+  // tasks (subtrees run in parallel) of the current plans; 0: the call runs serially
+  int solve_tasks() const { return (int) solve_plan_.roots.size(); }
+  int factorise_tasks() const { return (int) factor_plan_.roots.size(); }
+
   // largest number of graph nodes in a leaf of the dissection (default 8);
   // before analyse(); std::invalid_argument below 1
   void set_leaf_size(int nodes);
@@ -151,7 +200,20 @@ class LatticeSparseCholesky {
     std::size_t rows_off = 0, block_off = 0;
   };
 
+  // subtrees run in parallel: roots ascending, task_of[t] (-1: the top), the order
+  // of execution (by decreasing cost); solve: defer_off[t], the offset of t's kept
+  // products for the top's rows (a prefix sum over the tree nodes)
+  struct Plan {
+    std::vector<int> roots, task_of, order;
+    std::vector<std::size_t> defer_off;
+    std::size_t stack = 0, front = 0;    // factorise: the largest update stack, front of a task
+  };
+  struct Front;    // factorise's frontal matrix, update stack and scratch (one per thread)
+
   int leaf_size_ = 8;
+  int threads_ = 1;
+  std::unique_ptr<LatticeThreadPool> pool_;
+  Plan solve_plan_, factor_plan_;
   int dim_ = 0, nnodes_ = 0, ncols_ = 0, depth_ = 0;
   bool factorised_ = false;
   std::vector<int> dof_col_, col_dof_, col_tree_;
@@ -169,6 +231,11 @@ class LatticeSparseCholesky {
   int add_tree_node(const std::vector<int> &nodes, const std::vector<int> &children,
                     std::vector<int> &node_tree);
   void symbolic();
+  void make_plans();
+  Plan make_plan(const std::vector<double> &cost, double top_weight, double min_cost) const;
+  int factor_node(int t, Front &fr, const std::vector<LatticeSpring> &springs, const int *off,
+                  const int *bucket, double shift, LatticeThreadPool *pool, double &pivot);
+  void forward_rows(int t, double *w, double *scratch, int nrow_w, double *kept) const;
   bool in_pattern(int a, int b) const;
   const double *load_block(int t, const double *w, double *y, bool rows_too, int &n, int &m) const;
   int spring_vector(const LatticeSpring &s, int *cols, double *vals) const;

@@ -1,6 +1,6 @@
 // Checks of LatticeSparseCholesky (src/BONDED_LATTICE/lattice_sparse_cholesky.h)
 // against a dense Cholesky of the explicitly assembled stiffness matrix.
-// Standalone: g++ -std=c++17 -O2 -I src/BONDED_LATTICE this.cpp lattice_sparse_cholesky.cpp
+// Standalone: g++ -std=c++17 -O2 -pthread -I src/BONDED_LATTICE this.cpp lattice_sparse_cholesky.cpp
 // Prints "name value" lines (tests/unit/test_sparse_cholesky.py asserts them) and
 // "message <text>" lines with the errors caught; exits 1 on an unexpected exception.
 
@@ -500,6 +500,134 @@ void check_deterministic(Net &net, std::mt19937_64 &rng)
   report("deterministic", std::memcmp(x[0].data(), x[1].data(), sizeof(double) * b.size()) == 0);
 }
 
+// all blocks of the factor, one after the other
+std::vector<double> factor_values(const LatticeSparseCholesky &chol)
+{
+  std::vector<double> v;
+  for (int t = 0; t < chol.ntree(); ++t) {
+    const int n = chol.col_end(t) - chol.col_begin(t);
+    v.insert(v.end(), chol.block(t), chol.block(t) + (std::size_t) (n + chol.nrows(t)) * n);
+  }
+  return v;
+}
+
+bool same_bits(const std::vector<double> &a, const std::vector<double> &b)
+{
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0;
+}
+
+// factorise, solve, 20 downdates + 5 updates, solve, factorise afresh, solve on 1, 2, 3
+// and 4 threads: every factor and solution bit for bit that of 1 thread.  2 threads are
+// set before analyse(), the others after; one object also goes 4 -> 2 -> 1 -> 3 threads
+// on the same factor.  Reports the mismatches (0 expected) and the plans' task counts
+void check_threads(const char *tag, Net &net, int leaf, double shift, std::mt19937_64 &rng)
+{
+  const std::vector<double> b = random_rhs(net, rng);
+  std::vector<std::pair<LatticeSpring, int>> changes;    // (spring, sign)
+  {
+    std::vector<LatticeSpring> now = net.springs, removed;
+    for (int q = 0; q < 20; ++q) {
+      const std::size_t i = (std::size_t) (uniform(rng) * now.size());
+      changes.push_back({now[i], -1});
+      removed.push_back(now[i]);
+      now.erase(now.begin() + i);
+    }
+    for (int q = 0; q < 5; ++q) {
+      LatticeSpring s = removed[(std::size_t) (uniform(rng) * removed.size())];
+      s.k = 0.5 + uniform(rng);
+      changes.push_back({s, +1});
+    }
+  }
+  std::vector<double> ref[5];    // 1 thread: factor, x, modified factor, its x, fresh x
+  int mismatches = 0, switch_mismatches = 0;
+  std::string p(tag);
+  for (int nt = 1; nt <= 4; ++nt) {
+    LatticeSparseCholesky chol;
+    chol.set_leaf_size(leaf);
+    if (nt == 2) chol.set_threads(nt);
+    chol.analyse(net.dim, net.nnodes, net.coords.data(), net.free, net.pairs);
+    if (nt != 2) chol.set_threads(nt);
+    chol.factorise(net.springs, shift);
+    std::vector<double> got[5];
+    got[0] = factor_values(chol);
+    got[1] = b;
+    chol.solve(got[1].data());
+    for (const auto &c : changes) chol.modify(c.first, c.second);
+    got[2] = factor_values(chol);
+    got[3] = b;
+    chol.solve(got[3].data());
+    chol.factorise(net.springs, shift);    // again on the same object: the same factor
+    got[4] = b;
+    chol.solve(got[4].data());
+    mismatches += !same_bits(factor_values(chol), got[0]);
+    for (int q = 0; q < 5; ++q) {
+      if (nt == 1) ref[q] = got[q];
+      mismatches += !same_bits(got[q], ref[q]);
+    }
+    report((p + "_threads" + std::to_string(nt) + "_solve_tasks").c_str(), chol.solve_tasks());
+    report((p + "_threads" + std::to_string(nt) + "_factorise_tasks").c_str(), chol.factorise_tasks());
+    if (nt == 4) {
+      for (int other : {2, 1, 3}) {
+        chol.set_threads(other);
+        std::vector<double> x = b;
+        chol.solve(x.data());
+        switch_mismatches += !same_bits(x, ref[4]) || chol.threads() != other;
+      }
+      report((p + "_max_rows").c_str(), chol.max_rows());
+    }
+  }
+  report((p + "_threads_mismatches").c_str(), mismatches);
+  report((p + "_threads_switch_mismatches").c_str(), switch_mismatches);
+}
+
+// a zero pivot in both halves of the network (two nodes without springs, shift 0): the
+// error names the same node on 1 to 4 threads (the first bad pivot in post-order)
+void check_threads_error(Net &net)
+{
+  const int u1 = net.nnodes / 4 + 5, u2 = 3 * net.nnodes / 4 - 25;    // (60 x 50: x 35 and 5)
+  std::vector<LatticeSpring> without;
+  for (const auto &s : net.springs)
+    if (s.a != u1 && s.b != u1 && s.a != u2 && s.b != u2) without.push_back(s);
+  std::string first;
+  int same = 0, tasks = 0;
+  for (int nt = 1; nt <= 4; ++nt) {
+    LatticeSparseCholesky chol;
+    chol.set_threads(nt);
+    chol.analyse(net.dim, net.nnodes, net.coords.data(), net.free, net.pairs);
+    tasks = std::max(tasks, chol.factorise_tasks());
+    try {
+      chol.factorise(without, 0.0);
+    } catch (const std::runtime_error &e) {
+      if (nt == 1) {
+        first = e.what();
+        std::printf("message %s\n", e.what());
+      }
+      same += first == e.what() && !chol.factorised();
+    }
+  }
+  report("threads_error_same", same);
+  report("threads_error_tasks", tasks);
+  report("threads_error_names_a_node",
+         first.find("node " + std::to_string(u1) + " ") != std::string::npos ||
+             first.find("node " + std::to_string(u2) + " ") != std::string::npos);
+}
+
+void check_set_threads_range()
+{
+  LatticeSparseCholesky chol;
+  int caught = 0;
+  for (int bad : {0, -2}) {
+    try {
+      chol.set_threads(bad);
+    } catch (const std::invalid_argument &e) {
+      if (bad == 0) std::printf("message %s\n", e.what());
+      caught += std::strstr(e.what(), "out of range") != nullptr;
+    }
+  }
+  report("error_set_threads", caught);
+  report("default_threads", chol.threads());
+}
+
 }    // namespace
 
 int main()
@@ -577,6 +705,23 @@ int main()
     check_loose(tri2, 8, rng);
     check_errors(tri2, rng);
     check_deterministic(tri2, rng);
+
+    // threads: a 2D triangular 60 x 50 (bottom row held, a few random components held) and a
+    // 3D fcc 6^3 cells (864 nodes, bottom layer held), large enough for the plans to split
+    // them into tasks (and the fcc's top fronts for the rank-k updates split in row blocks)
+    Net big = triangular(60, 50);
+    for (int i = 0; i < 60; ++i) big.free[2 * i] = big.free[2 * i + 1] = 0;
+    for (int q = 0; q < 20; ++q) big.free[(std::size_t) (uniform(rng) * big.free.size())] = 0;
+    random_springs(big, rng);
+    check_threads("tri_big", big, 8, 1e-3, rng);
+    check_threads("tri_big_leaf2", big, 2, 1e-3, rng);
+    Net f6 = fcc(6);
+    for (int a = 0; a < f6.nnodes; ++a)
+      if (f6.coords[3 * a + 2] == 0.0) f6.free[3 * a] = f6.free[3 * a + 1] = f6.free[3 * a + 2] = 0;
+    random_springs(f6, rng);
+    check_threads("fcc_big", f6, 8, 1e-3, rng);
+    check_threads_error(big);
+    check_set_threads_range();
   } catch (const std::exception &e) {
     std::printf("unexpected %s\n", e.what());
     return 1;

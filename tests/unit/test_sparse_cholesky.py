@@ -31,7 +31,7 @@ def check(tmp_path_factory) -> dict:
     if gxx is None:
         pytest.skip("no g++ on PATH: the standalone solver check needs a C++17 compiler")
     exe = tmp_path_factory.mktemp("cholesky") / "sparse_cholesky_check"
-    subprocess.run([gxx, "-std=c++17", "-O2", "-Wall", "-Wextra", "-Werror",
+    subprocess.run([gxx, "-std=c++17", "-O2", "-Wall", "-Wextra", "-Werror", "-pthread",
                     f"-I{ROOT / 'src' / 'BONDED_LATTICE'}", *map(str, SOURCES), "-o", str(exe)],
                    check=True, timeout=120)
     out = subprocess.run([str(exe)], check=True, capture_output=True, text=True, timeout=60)
@@ -123,3 +123,37 @@ def test_errors_are_caught_with_their_messages(check):
 def test_deterministic(check):
     # the same input twice (analyse, factorise, 5 downdates, solve): bit-identical
     assert check["deterministic"] == 1.0
+
+
+@pytest.mark.parametrize("tag", ["tri_big", "tri_big_leaf2", "fcc_big"])
+def test_threads_give_the_same_bits(check, tag):
+    # factorise, solve, 20 downdates + 5 updates, solve, factorise again, solve, on 1, 2, 3 and
+    # 4 threads (2D triangular 60 x 50, leaf sizes 8 and 2; 3D fcc of 864 nodes): every factor
+    # and solution equal to 1 thread's to the bit (memcmp), also when one object changes its
+    # thread count between solves
+    assert check[f"{tag}_threads_mismatches"] == 0, check["text"]
+    assert check[f"{tag}_threads_switch_mismatches"] == 0
+    # the threaded paths were taken: no tasks on 1 thread, several subtrees on 2 to 4
+    assert check[f"{tag}_threads1_solve_tasks"] == 0
+    assert check[f"{tag}_threads1_factorise_tasks"] == 0
+    for nt in (2, 3, 4):
+        assert check[f"{tag}_threads{nt}_solve_tasks"] >= 2
+        assert check[f"{tag}_threads{nt}_factorise_tasks"] >= 2
+    # the fcc's largest front has more than 128 rows below its first 64-column panel: the
+    # rank-k updates of the top fronts were split over the threads (SYRK_PARALLEL_ROWS)
+    if tag == "fcc_big":
+        assert check[f"{tag}_max_rows"] > 128 + 64
+
+
+def test_threads_report_the_serial_pivot_error(check):
+    # two nodes without springs (one in each half), shift 0: the same message (the first bad
+    # pivot in post-order) on 1 to 4 threads, where the two may fail in different tasks
+    assert check["threads_error_same"] == 4
+    assert check["threads_error_tasks"] >= 2
+    assert check["threads_error_names_a_node"] == 1
+
+
+def test_set_threads_range(check):
+    assert check["default_threads"] == 1
+    assert check["error_set_threads"] == 2
+    assert any("threads 0 is out of range (>= 1)" in m for m in check["messages"])
