@@ -53,6 +53,11 @@ static constexpr double FACTOR_FLOP_SPEED = 0.32;
 // budget of particle moves per unknown before a solve takes over instead
 static constexpr double SMOOTH_OMEGA = 1.5;
 static constexpr double SMOOTH_BUDGET = 0.25;
+// a Newton step moves no particle more than this fraction of the smallest
+// radius (relax local's budget between force evaluations); rounds of
+// direction updates before a new factor, then a shorter step
+static constexpr double STEP_FRACTION = 0.05;
+static constexpr int STEP_ROUNDS = 2;
 
 namespace {
 // m x = rhs for the symmetric dim x dim block m (Cramer); false if singular
@@ -103,8 +108,13 @@ static constexpr int RECORD_VALUES = 11;
 
 LatticeDirectRelax::LatticeDirectRelax(LAMMPS *lmp, PairLatticeBond *pair_in, double ftol_in,
                                        int threads_in) :
-    Pointers(lmp), pair(pair_in), ftol(ftol_in), threads(threads_in)
+    Pointers(lmp), pair(pair_in), ftol(ftol_in), threads(threads_in),
+    max_step(STEP_FRACTION * pair_in->smallest_radius())
 {
+  if (!(max_step > 0.0))
+    error->all(FLERR, "lattice/quasistatic relax direct needs particles of positive radius (the "
+               "smallest is {}): a Newton step may move a particle a twentieth of it",
+               pair_in->smallest_radius());
 }
 
 void LatticeDirectRelax::check_model()
@@ -512,12 +522,74 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
       factorise(net, state, u);
       out.factorised++;
     }
-    state.factor.solve(f.data());
-    out.solves++;
-    for (size_t q = 0; q < u.size(); q++)
-      if (net.free[q]) u[q] += f[q];
+    newton_step(net, state, u, f, out);
   }
   return false;
+}
+
+/* ----------------------------------------------------------------------
+   u += K^-1 f, with no particle moving more than max_step.  A particle held
+   by springs in one line (a particle left on one bond, a chain) has no
+   stiffness across them but the shift: a force across them that comes only
+   from their turn since the factor was made would move it by that force over
+   the shift.  So a particle whose step exceeds max_step has its springs'
+   directions brought up to date in the factor (an update and a downdate
+   each) and the step is solved again; after STEP_ROUNDS such rounds the
+   factor is made anew at the current directions, and a step still too long
+   is scaled down to max_step (the Newton steps go on from there)
+------------------------------------------------------------------------- */
+
+void LatticeDirectRelax::newton_step(Network &net, LatticeDirectState &state,
+                                     std::vector<double> &u, const std::vector<double> &f,
+                                     Outcome &out)
+{
+  const int dim = net.dim;
+  const size_t nnodes = net.tags.size();
+  std::vector<double> step;
+  for (int round = 0;; round++) {
+    step = f;
+    state.factor.solve(step.data());
+    out.solves++;
+    std::vector<int> far;
+    double longest = 0.0;
+    for (size_t a = 0; a < nnodes; a++) {
+      double sq = 0.0;
+      for (int c = 0; c < dim; c++) sq += step[a * dim + c] * step[a * dim + c];
+      const double move = std::sqrt(sq);
+      longest = MAX(longest, move);
+      if (move > max_step) far.push_back((int) a);
+    }
+    if (far.empty()) break;
+    if (round == STEP_ROUNDS) {
+      factorise(net, state, u);
+      out.factorised++;
+      continue;
+    }
+    if (round > STEP_ROUNDS) {
+      const double scale = max_step / longest;
+      for (double &v : step) v *= scale;
+      out.damped++;
+      break;
+    }
+    for (const int a : far)
+      for (int e = net.node_start[a]; e < net.node_start[a + 1]; e++) {
+        const int k = net.node_springs[e];
+        const Spring &s = net.springs[k];
+        double d[3] = {s.d[0], s.d[1], s.d[2]};
+        for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+        const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (!(r > 0.0)) continue;
+        const LatticeSpring old = term(state, k);
+        for (int c = 0; c < 3; c++) state.n[3 * (size_t) k + c] = d[c] / r;
+        if (!state.in_factor[k]) continue;
+        // the new direction first, then the old one out: the matrix stays definite
+        state.factor.modify(term(state, k), 1);
+        state.factor.modify(old, -1);
+        out.changes += 2;
+      }
+  }
+  for (size_t q = 0; q < u.size(); q++)
+    if (net.free[q]) u[q] += step[q];
 }
 
 /* ----------------------------------------------------------------------

@@ -84,6 +84,7 @@ class LatticeDirectRelax : protected Pointers {
     bigint changes = 0;           // springs that joined or left the factor
     bigint factorised = 0;        // numeric factorisations
     bigint moves = 0;             // particle moves of the local smoothing
+    bigint damped = 0;            // Newton steps shortened to max_step
     bool analysed = false;        // a new ordering (atoms or records changed)
     double largest_move = 0.0;    // largest displacement component of the pass
     bool relinearise = false;     // an equilibrium took NEWTON_MAX steps: the pass ended
@@ -100,6 +101,7 @@ class LatticeDirectRelax : protected Pointers {
   PairLatticeBond *pair;
   double ftol;
   int threads;    // of the factor's factorisations and solves
+  double max_step;    // the longest move of a particle in one Newton step
   std::vector<tagint> held_ids;    // probe_fixes: ID, bits of every particle holding some
 
   // the network on rank 0, in ID order
@@ -133,6 +135,9 @@ class LatticeDirectRelax : protected Pointers {
   // rank 0: Gauss-Seidel moves of the particles whose force exceeds ftol, at most budget
   bool smooth(Network &net, std::vector<double> &u, std::vector<double> &f, bigint budget,
               Outcome &out) const;
+  // rank 0: u += K^-1 f, no particle moving more than max_step
+  void newton_step(Network &net, LatticeDirectState &state, std::vector<double> &u,
+                   const std::vector<double> &f, Outcome &out);
   // rank 0: Newton steps to ftol; false if they did not get there
   bool equilibrate(Network &net, LatticeDirectState &state, std::vector<double> &u, Outcome &out);
   // rank 0: the seed's loop
