@@ -108,13 +108,8 @@ static constexpr int RECORD_VALUES = 11;
 
 LatticeDirectRelax::LatticeDirectRelax(LAMMPS *lmp, PairLatticeBond *pair_in, double ftol_in,
                                        int threads_in) :
-    Pointers(lmp), pair(pair_in), ftol(ftol_in), threads(threads_in),
-    max_step(STEP_FRACTION * pair_in->smallest_radius())
+    Pointers(lmp), pair(pair_in), ftol(ftol_in), threads(threads_in), max_step(0.0)
 {
-  if (!(max_step > 0.0))
-    error->all(FLERR, "lattice/quasistatic relax direct needs particles of positive radius (the "
-               "smallest is {}): a Newton step may move a particle a twentieth of it",
-               pair_in->smallest_radius());
 }
 
 void LatticeDirectRelax::check_model()
@@ -668,6 +663,12 @@ LatticeDirectRelax::Outcome LatticeDirectRelax::pass(bigint maxbreak, bool break
                                                      const std::function<void(const Break &)> &on_break)
 {
   Outcome out;
+  // the radii are the pair style's of the force evaluation before the pass
+  max_step = STEP_FRACTION * pair->smallest_radius();
+  if (!(max_step > 0.0))
+    error->all(FLERR, "lattice/quasistatic relax direct needs particles of positive radius (the "
+               "smallest is {}): a Newton step may move a particle a twentieth of it",
+               pair->smallest_radius());
   Network net;
   gather(net);
   const int dim = domain->dimension;
