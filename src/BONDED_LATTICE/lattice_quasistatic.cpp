@@ -429,9 +429,9 @@ void LatticeQuasistatic::record_break(tagint owner, tagint partner, BreakMode mo
 
 /* ----------------------------------------------------------------------
    relax direct: passes of (force evaluation, and, unless no force component
-   exceeds ftol and no bond its threshold, an exact linear relaxation with
-   its breaks).  Counts solves in `solves` and factorisations in
-   `factorisations`
+   exceeds ftol and no bond its threshold, rank 0's Newton steps and breaks,
+   LatticeDirectRelax::pass).  Counts solves in `solves` and factorisations
+   in `factorisations`
 ------------------------------------------------------------------------- */
 
 void LatticeQuasistatic::run_direct(bigint &broken, int &tension, int &shear, bigint &relaxations,
@@ -439,9 +439,9 @@ void LatticeQuasistatic::run_direct(bigint &broken, int &tension, int &shear, bi
 {
   LatticeDirectRelax dr(lmp, pair, ftol, threads);
   dr.check_model();
-  // passes in a row that broke nothing: each is a Newton step of the linear
-  // stiffness, which converges by about the strain per pass; a hundred means
-  // the pair style's forces and the linear model disagree (e.g. contacts)
+  // passes in a row that broke nothing: a pass ends without a break when its
+  // end state needs checking (moved particles, new contacts) or an equilibrium
+  // took too many Newton steps; a hundred means it does not settle
   static constexpr int MAX_IDLE_PASSES = 100;
   int idle = 0;
   while (true) {
