@@ -4,8 +4,10 @@
 // top rows held, one spring per nearest-neighbour pair with k Gaussian (mean 1, sd 0.15,
 // redrawn until positive).  THREADS: comma-separated thread counts (e.g. 1,2): per count, the
 // factorisation and the best of 5 solves of the same factor, and whether the factor and the
-// solution are bit-identical to those of the first count (a hash of their bits).  Prints
-// "name value" lines.
+// solution are bit-identical to those of the first count (a hash of their bits), and the cores
+// the machine offers at that moment: nt x (time of a fixed arithmetic loop on one thread) / (time
+// of the same loop on each of nt threads at once), nt for an idle machine.  Prints "name value"
+// lines.
 
 #include "lattice_sparse_cholesky.h"
 
@@ -17,6 +19,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 using LAMMPS_NS::LatticeSparseCholesky;
@@ -64,6 +67,25 @@ std::uint64_t hash_bits(const double *v, std::size_t n, std::uint64_t h)
     }
   }
   return h;
+}
+
+// nt x (a fixed loop on one thread) / (the loop on each of nt threads at once): the cores free
+double free_cores(int nt)
+{
+  static volatile double sink;
+  auto loop = [] {
+    double s = 0.0;
+    for (long i = 0; i < 150000000L; ++i) s += (double) i * 1e-9;
+    sink = s;
+  };
+  auto t0 = std::chrono::steady_clock::now();
+  loop();
+  const double t1 = seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  std::vector<std::thread> th;
+  for (int k = 0; k < nt; ++k) th.emplace_back(loop);
+  for (auto &t : th) t.join();
+  return nt * t1 / seconds_since(t0);
 }
 
 std::uint64_t hash_factor(const LatticeSparseCholesky &chol)
@@ -184,6 +206,7 @@ int main(int argc, char **argv)
       h_x0 = hx;
     }
     const std::string tag = "_t" + std::to_string(nt);
+    std::printf("free_cores%s %.3f\n", tag.c_str(), free_cores(nt));
     std::printf("factorise_s%s %.4f\nsolve_best5_s%s %.5f\n", tag.c_str(), tf, tag.c_str(), ts);
     std::printf("solve_tasks%s %d\nfactorise_tasks%s %d\n", tag.c_str(), chol.solve_tasks(),
                 tag.c_str(), chol.factorise_tasks());
