@@ -14,9 +14,12 @@ factor, of the factor after the ``--mods`` downdates and of a fresh factorisatio
 reduced spring set (b random on every free dof).
 
 ``--threads 1 2``: per size also a second table, the factorisation and the best of 5 solves of
-the same factor on each thread count (``LatticeSparseCholesky::set_threads``), the speed-up over
-the first count, the plans' task counts, and whether the factor and the solution are
-bit-identical to the first count's (a hash of their bits).
+the same factor on each thread count (``LatticeSparseCholesky::set_threads``; wall time, and the
+process's CPU time over all its threads), the speed-up of the wall time over
+the first count, the plans' task counts, whether the factor and the solution are bit-identical to
+the first count's (a hash of their bits), and the cores the machine offered just before (count x
+the time of a fixed loop on one thread over its time on each of count threads at once: the count
+on an idle machine; less when other jobs run).
 
     python bench/sparse_cholesky.py        # 60x70 100x116 400x462 800x922: 4200 ... 737,600 nodes
     python bench/sparse_cholesky.py --sizes 400x462 800x922 --threads 1 2
@@ -116,16 +119,18 @@ def print_threads(results: list[dict], threads: list[int]) -> None:
     """The thread counts' table: times, speed-ups over the first count, tasks, identity."""
     first = threads[0]
     print()
-    print("| nodes | threads | factorise (s) | speed-up | one solve, best of 5 (s) | speed-up | "
-          "solve tasks | factorise tasks | bit-identical |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| nodes | threads | factorise (s) | CPU (s) | speed-up | one solve, best of 5 (s) | "
+          "CPU (s) | speed-up | solve tasks | factorise tasks | bit-identical | free cores |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for v in results:
         for t in threads:
             tf, ts = v[f"factorise_s_t{t}"], v[f"solve_best5_s_t{t}"]
-            print(f"| {int(v['nodes']):,} | {t} | {tf:.3f} | {v[f'factorise_s_t{first}'] / tf:.2f} | "
-                  f"{ts:.4f} | {v[f'solve_best5_s_t{first}'] / ts:.2f} | "
+            print(f"| {int(v['nodes']):,} | {t} | {tf:.3f} | {v[f'factorise_cpu_s_t{t}']:.3f} | "
+                  f"{v[f'factorise_s_t{first}'] / tf:.2f} | {ts:.4f} | "
+                  f"{v[f'solve_cpu_best5_s_t{t}']:.4f} | {v[f'solve_best5_s_t{first}'] / ts:.2f} | "
                   f"{int(v[f'solve_tasks_t{t}'])} | {int(v[f'factorise_tasks_t{t}'])} | "
-                  f"{'yes' if v[f'identical_t{t}'] == 1.0 else 'NO'} |", flush=True)
+                  f"{'yes' if v[f'identical_t{t}'] == 1.0 else 'NO'} | {v[f'free_cores_t{t}']:.2f} |",
+                  flush=True)
 
 
 if __name__ == "__main__":

@@ -3,9 +3,12 @@
 // NX x NY nodes (rows along x, odd rows shifted by 1/2), 2 free dof per node, the bottom and
 // top rows held, one spring per nearest-neighbour pair with k Gaussian (mean 1, sd 0.15,
 // redrawn until positive).  THREADS: comma-separated thread counts (e.g. 1,2): per count, the
-// factorisation and the best of 5 solves of the same factor, and whether the factor and the
-// solution are bit-identical to those of the first count (a hash of their bits).  Prints
-// "name value" lines.
+// factorisation and the best of 5 solves of the same factor (wall and process CPU time), and
+// whether the factor and the
+// solution are bit-identical to those of the first count (a hash of their bits), and the cores
+// the machine offers at that moment: nt x (time of a fixed arithmetic loop on one thread) / (time
+// of the same loop on each of nt threads at once), nt for an idle machine.  Prints "name value"
+// lines.
 
 #include "lattice_sparse_cholesky.h"
 
@@ -17,6 +20,8 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <sys/resource.h>
+#include <thread>
 #include <vector>
 
 using LAMMPS_NS::LatticeSparseCholesky;
@@ -64,6 +69,33 @@ std::uint64_t hash_bits(const double *v, std::size_t n, std::uint64_t h)
     }
   }
   return h;
+}
+
+// user + system CPU time of the process (all its threads)
+double cpu_seconds()
+{
+  rusage r;
+  getrusage(RUSAGE_SELF, &r);
+  return r.ru_utime.tv_sec + 1e-6 * r.ru_utime.tv_usec + r.ru_stime.tv_sec + 1e-6 * r.ru_stime.tv_usec;
+}
+
+// nt x (a fixed loop on one thread) / (the loop on each of nt threads at once): the cores free
+double free_cores(int nt)
+{
+  static volatile double sink;
+  auto loop = [] {
+    double s = 0.0;
+    for (long i = 0; i < 150000000L; ++i) s += (double) i * 1e-9;
+    sink = s;
+  };
+  auto t0 = std::chrono::steady_clock::now();
+  loop();
+  const double t1 = seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  std::vector<std::thread> th;
+  for (int k = 0; k < nt; ++k) th.emplace_back(loop);
+  for (auto &t : th) t.join();
+  return nt * t1 / seconds_since(t0);
 }
 
 std::uint64_t hash_factor(const LatticeSparseCholesky &chol)
@@ -167,16 +199,19 @@ int main(int argc, char **argv)
   for (std::size_t q = 0; q < thread_counts.size(); ++q) {
     const int nt = thread_counts[q];
     chol.set_threads(nt);
+    double c0 = cpu_seconds();
     t0 = std::chrono::steady_clock::now();
     chol.factorise(springs, shift);
-    const double tf = seconds_since(t0);
-    double ts = 1e30;
+    const double tf = seconds_since(t0), cf = cpu_seconds() - c0;
+    double ts = 1e30, cs = 1e30;
     std::vector<double> xt;
     for (int rep = 0; rep < 5; ++rep) {
       xt = b;
+      c0 = cpu_seconds();
       t0 = std::chrono::steady_clock::now();
       chol.solve(xt.data());
       ts = std::min(ts, seconds_since(t0));
+      cs = std::min(cs, cpu_seconds() - c0);
     }
     const std::uint64_t hf = hash_factor(chol), hx = hash_bits(xt.data(), xt.size(), 1469598103934665603ull);
     if (q == 0) {
@@ -184,7 +219,9 @@ int main(int argc, char **argv)
       h_x0 = hx;
     }
     const std::string tag = "_t" + std::to_string(nt);
+    std::printf("free_cores%s %.3f\n", tag.c_str(), free_cores(nt));
     std::printf("factorise_s%s %.4f\nsolve_best5_s%s %.5f\n", tag.c_str(), tf, tag.c_str(), ts);
+    std::printf("factorise_cpu_s%s %.4f\nsolve_cpu_best5_s%s %.5f\n", tag.c_str(), cf, tag.c_str(), cs);
     std::printf("solve_tasks%s %d\nfactorise_tasks%s %d\n", tag.c_str(), chol.solve_tasks(),
                 tag.c_str(), chol.factorise_tasks());
     std::printf("identical%s %d\n", tag.c_str(), (int) (hf == h_factor0 && hx == h_x0));

@@ -80,7 +80,9 @@
      A pivot that fails in a task is reported when the walk reaches the task:
      the error is the serial one (the first bad pivot in post-order).
    Small problems (a plan with one task, or below a minimum of work) run on
-   the calling thread alone.  An object runs one threaded call at a time.
+   the calling thread alone.  solve() may still be called from several
+   threads at once (the pool takes one call's tasks at a time);
+   set_threads() not while another call runs.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_LATTICE_SPARSE_CHOLESKY_H

@@ -500,6 +500,28 @@ void check_deterministic(Net &net, std::mt19937_64 &rng)
   report("deterministic", std::memcmp(x[0].data(), x[1].data(), sizeof(double) * b.size()) == 0);
 }
 
+// two nx x ny triangular patches side by side with no spring between them (the second
+// shifted by nx + 12 along x: a gap of about 12 spacings), the bottom row of each held
+Net two_patches(int nx, int ny, std::mt19937_64 &rng)
+{
+  Net two = triangular(nx, ny);
+  const Net right = triangular(nx, ny);
+  const int n0 = two.nnodes;
+  for (int u = 0; u < right.nnodes; ++u) {
+    two.coords.push_back(right.coords[2 * u] + nx + 12.0);
+    two.coords.push_back(right.coords[2 * u + 1]);
+  }
+  for (const auto &pr : right.pairs) two.pairs.push_back({pr.first + n0, pr.second + n0});
+  two.nnodes += right.nnodes;
+  two.free.assign(2 * two.nnodes, 1);
+  for (int i = 0; i < nx; ++i) {
+    two.free[2 * i] = two.free[2 * i + 1] = 0;
+    two.free[2 * (n0 + i)] = two.free[2 * (n0 + i) + 1] = 0;
+  }
+  random_springs(two, rng);
+  return two;
+}
+
 // all blocks of the factor, one after the other
 std::vector<double> factor_values(const LatticeSparseCholesky &chol)
 {
@@ -668,23 +690,7 @@ int main()
 
     // two patches with no spring between them: the dissection's first separator is
     // empty and the tree a forest of two
-    Net two = triangular(8, 6);
-    {
-      const Net right = triangular(8, 6);
-      const int n0 = two.nnodes;
-      for (int u = 0; u < right.nnodes; ++u) {
-        two.coords.push_back(right.coords[2 * u] + 20.0);
-        two.coords.push_back(right.coords[2 * u + 1]);
-      }
-      for (const auto &pr : right.pairs) two.pairs.push_back({pr.first + n0, pr.second + n0});
-      two.nnodes += right.nnodes;
-      two.free.assign(2 * two.nnodes, 1);
-      for (int i = 0; i < 8; ++i) {
-        two.free[2 * i] = two.free[2 * i + 1] = 0;
-        two.free[2 * (n0 + i)] = two.free[2 * (n0 + i) + 1] = 0;
-      }
-      random_springs(two, rng);
-    }
+    Net two = two_patches(8, 6, rng);
     check_solve("two_patches", two, 8, 0.0, rng);
 
     // no free component at all: an empty matrix, solve() a no-op
@@ -720,6 +726,8 @@ int main()
       if (f6.coords[3 * a + 2] == 0.0) f6.free[3 * a] = f6.free[3 * a + 1] = f6.free[3 * a + 2] = 0;
     random_springs(f6, rng);
     check_threads("fcc_big", f6, 8, 1e-3, rng);
+    Net two_big = two_patches(40, 30, rng);    // a forest: the plans start from its two roots
+    check_threads("two_big", two_big, 8, 1e-3, rng);
     check_threads_error(big);
     check_set_threads_range();
   } catch (const std::exception &e) {

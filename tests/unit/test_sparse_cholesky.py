@@ -125,10 +125,11 @@ def test_deterministic(check):
     assert check["deterministic"] == 1.0
 
 
-@pytest.mark.parametrize("tag", ["tri_big", "tri_big_leaf2", "fcc_big"])
+@pytest.mark.parametrize("tag", ["tri_big", "tri_big_leaf2", "fcc_big", "two_big"])
 def test_threads_give_the_same_bits(check, tag):
     # factorise, solve, 20 downdates + 5 updates, solve, factorise again, solve, on 1, 2, 3 and
-    # 4 threads (2D triangular 60 x 50, leaf sizes 8 and 2; 3D fcc of 864 nodes): every factor
+    # 4 threads (2D triangular 60 x 50, leaf sizes 8 and 2; 3D fcc of 864 nodes; two separate
+    # 40 x 30 patches, a forest of two trees): every factor
     # and solution equal to 1 thread's to the bit (memcmp), also when one object changes its
     # thread count between solves
     assert check[f"{tag}_threads_mismatches"] == 0, check["text"]
