@@ -291,8 +291,8 @@ def relax_option(p: argparse.ArgumentParser, default: str, why: str = "") -> Non
     ``why``: the reason for a default other than the scenes' (for the help)."""
     p.add_argument("--relax", choices=RELAXATIONS, default=default,
                    help="quasistatic: relax by lattice/quasistatic relax local, where the "
-                   "forces exceed the tolerance, relax direct, exact linear solves with a "
-                   "sparse factor, or FIRE over the whole box (default "
+                   "forces exceed the tolerance, relax direct, Newton steps with a sparse "
+                   "Cholesky factor, or FIRE over the whole box (default "
                    f"{default}{': ' + why if why else ''})")
 
 

@@ -176,7 +176,7 @@ def _quasistatic(scene: Scene, fb: float) -> str:
         how = "over-relaxation where the forces exceed the tolerance, relax local"
         minimizer = ""
     elif scene.relax == "direct":
-        how = "exact linear solves with a sparse Cholesky factor, relax direct"
+        how = "Newton steps with a sparse Cholesky factor, relax direct"
         minimizer = ""
     else:
         how, minimizer = "FIRE", "min_style       fire\n"
