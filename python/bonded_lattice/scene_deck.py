@@ -213,6 +213,8 @@ def _relax(scene: Scene, fb: float) -> str:
     first ``break_order`` breaks (``break.<n>.txt``).  No run between the calls: outside the
     command the pair style would break every bond past its threshold at once."""
     how = f"relax {scene.relax} quiet yes " if scene.relax in ("local", "direct") else ""
+    if scene.threads > 1:
+        how += f"threads {scene.threads} "
     relax = (f"lattice/quasistatic ftol {scene.relax_tolerance * fb:.6g} {how}break one "
              f"maxsteps {scene.maxsteps} breaks breaks.txt")
     if not scene.break_order:

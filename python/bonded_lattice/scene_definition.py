@@ -22,9 +22,9 @@ KINDS = ("layer-extension", "layer-compression", "polycrystal", "expanding")
 # or uniaxial (the other axis' walls stay where they are)
 DEFORMATIONS = ("pure-shear", "uniaxial")
 MODES = ("quasistatic", "dynamic")
-# how a quasi-static step relaxes: lattice/quasistatic relax local (over-relaxation where
-# the forces exceed the tolerance; the default), relax direct (exact linear solves with a
-# sparse Cholesky factor updated per break), or LAMMPS' FIRE minimiser over the whole box
+# how a quasi-static step relaxes: lattice/quasistatic relax direct (Newton steps with a
+# sparse Cholesky factor updated per break; the default), relax local (over-relaxation where
+# the forces exceed the tolerance), or LAMMPS' FIRE minimiser over the whole box
 RELAXATIONS = ("local", "direct", "fire")
 # the default tolerance of each, a fraction of Kn Xb.  relax local at 1e-4 breaks the bonds
 # of an exact linear solve in its order at 4200, 11,600 and 16,560 particles; FIRE at 1e-3
@@ -134,7 +134,8 @@ class Scene:
     # ...: the exact order of the first breaks (within a strain step too)
     break_order: int = 0
     maxsteps: int = 100000         # per relaxation (lattice/quasistatic maxsteps)
-    relax: str = "local"           # quasistatic: RELAXATIONS
+    relax: str = "direct"          # quasistatic: RELAXATIONS
+    threads: int = 1               # relax direct: threads of its factor and solves (rank 0)
     # "atomic": per-type mass and pair_style lattice/bond diameter d (less memory); not
     # for expanding grains, whose particles need their own diameters
     atom_style: str = "sphere"
@@ -176,6 +177,10 @@ class Scene:
         if self.relax not in RELAXATIONS:
             raise ValueError(f"relax = {self.relax!r} is not known: use one of "
                              f"{', '.join(RELAXATIONS)}")
+        if self.threads != 1 and self.relax != "direct":
+            raise ValueError(f"threads = {self.threads} with relax = {self.relax!r}: the threads "
+                             "are relax direct's (its factor and solves); use relax direct or "
+                             "threads 1")
         for name in ("d", "rho", "layer_thickness", "layer_contrast", "strain_step",
                      "relax_tolerance", "crossings", "dt_fraction"):
             value = getattr(self, name)
@@ -188,7 +193,7 @@ class Scene:
             raise ValueError(f"dt_fraction = {self.dt_fraction} is out of range: need <= 0.5")
         if not (self.damping >= 0 and math.isfinite(self.damping)):
             raise ValueError(f"damping = {self.damping} is out of range: need 0 <= damping < inf")
-        for name in ("n_steps", "output_every", "maxsteps", "n_grains"):
+        for name in ("n_steps", "output_every", "maxsteps", "n_grains", "threads"):
             if getattr(self, name) < 1:
                 raise ValueError(f"{name} = {getattr(self, name)} is out of range: need >= 1")
         if self.bond_dumps < 0:

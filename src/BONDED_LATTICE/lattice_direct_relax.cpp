@@ -49,8 +49,43 @@ static constexpr int NEWTON_MAX = 30;
 // of a flop of a solve, which streams the factor from memory (measured by
 // bench/sparse_cholesky.py: 1.53 s and 0.067 s at 184,800 particles)
 static constexpr double FACTOR_FLOP_SPEED = 0.32;
+// the over-relaxation of the local smoothing after a Newton step, and its
+// budget of particle moves per unknown before a solve takes over instead
+static constexpr double SMOOTH_OMEGA = 1.5;
+static constexpr double SMOOTH_BUDGET = 0.25;
+// a Newton step moves no particle more than this fraction of the smallest
+// radius (relax local's budget between force evaluations); rounds of
+// direction updates before a new factor, then a shorter step
+static constexpr double STEP_FRACTION = 0.05;
+static constexpr int STEP_ROUNDS = 2;
 
 namespace {
+// m x = rhs for the symmetric dim x dim block m (Cramer); false if singular
+bool solve_small(const double m[3][3], const double *rhs, double *x, int dim)
+{
+  if (dim == 2) {
+    const double det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    if (!(std::fabs(det) > 0.0)) return false;
+    x[0] = (m[1][1] * rhs[0] - m[0][1] * rhs[1]) / det;
+    x[1] = (m[0][0] * rhs[1] - m[1][0] * rhs[0]) / det;
+    return true;
+  }
+  auto det3 = [](const double t[3][3]) {
+    return t[0][0] * (t[1][1] * t[2][2] - t[1][2] * t[2][1]) -
+        t[0][1] * (t[1][0] * t[2][2] - t[1][2] * t[2][0]) +
+        t[0][2] * (t[1][0] * t[2][1] - t[1][1] * t[2][0]);
+  };
+  const double det = det3(m);
+  if (!(std::fabs(det) > 0.0)) return false;
+  for (int c = 0; c < 3; c++) {
+    double t[3][3];
+    for (int p = 0; p < 3; p++)
+      for (int q = 0; q < 3; q++) t[p][q] = (q == c) ? rhs[p] : m[p][q];
+    x[c] = det3(t) / det;
+  }
+  return true;
+}
+
 // the cost of a factorisation in solves, from the blocks of the ordering:
 // per tree node the dense partial Cholesky of its n columns, the triangular
 // solve of its |R| rows and the update of the |R| x |R| trailing matrix,
@@ -71,8 +106,9 @@ double factor_in_solves(const LatticeSparseCholesky &factor)
 // values per record: the owner-to-partner vector (3), r, touch, kn, xb, fs0, mu_p, intact, 0
 static constexpr int RECORD_VALUES = 11;
 
-LatticeDirectRelax::LatticeDirectRelax(LAMMPS *lmp, PairLatticeBond *pair_in, double ftol_in) :
-    Pointers(lmp), pair(pair_in), ftol(ftol_in)
+LatticeDirectRelax::LatticeDirectRelax(LAMMPS *lmp, PairLatticeBond *pair_in, double ftol_in,
+                                       int threads_in) :
+    Pointers(lmp), pair(pair_in), ftol(ftol_in), threads(threads_in), max_step(0.0)
 {
 }
 
@@ -238,22 +274,28 @@ double LatticeDirectRelax::ratio(const Spring &s, BreakMode &mode) const
    free force component
 ------------------------------------------------------------------------- */
 
+// a spring's stretch and force on its owner (f, dim components) at u
+void LatticeDirectRelax::spring_force(Spring &s, int dim, const std::vector<double> &u) const
+{
+  double d[3] = {s.d[0], s.d[1], s.d[2]};
+  for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+  const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  s.e = normal_stretch(r, s.touch);
+  // on the owner along the owner-to-partner vector, tension positive; an open contact none
+  const double scale = (!s.intact && contact_open(s.e)) ? 0.0 : normal_force(s.kn, s.e) / r;
+  for (int c = 0; c < 3; c++) s.f[c] = scale * d[c];
+}
+
 double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
                                   std::vector<double> &f) const
 {
   const int dim = net.dim;
   f.assign(u.size(), 0.0);
   for (Spring &s : net.springs) {
-    double d[3] = {s.d[0], s.d[1], s.d[2]};
-    for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
-    const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    s.e = normal_stretch(r, s.touch);
-    if (!s.intact && contact_open(s.e)) continue;
-    // on the owner along the owner-to-partner vector, tension positive
-    const double scale = normal_force(s.kn, s.e) / r;
+    spring_force(s, dim, u);
     for (int c = 0; c < dim; c++) {
-      f[(size_t) s.a * dim + c] += scale * d[c];
-      f[(size_t) s.b * dim + c] -= scale * d[c];
+      f[(size_t) s.a * dim + c] += s.f[c];
+      f[(size_t) s.b * dim + c] -= s.f[c];
     }
   }
   double largest = 0.0;
@@ -262,6 +304,92 @@ double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
     largest = MAX(largest, std::fabs(f[q]));
   }
   return largest;
+}
+
+/* ----------------------------------------------------------------------
+   what a Newton step leaves (the springs' turn since the factor was made,
+   mostly near the break) removed locally: Gauss-Seidel over-relaxation of
+   the particles whose free force exceeds ftol, in the order they come up
+   (relax local's move, D^-1 f with D = sum of Kn n n^T over the springs that
+   carry force, serial on rank 0).  f holds the forces at u and is kept up to
+   date.  false if `budget` moves did not bring every force below ftol
+------------------------------------------------------------------------- */
+
+bool LatticeDirectRelax::smooth(Network &net, std::vector<double> &u, std::vector<double> &f,
+                                bigint budget, Outcome &out) const
+{
+  const int dim = net.dim;
+  const size_t nnodes = net.tags.size();
+  auto above = [&](size_t a) {
+    for (int c = 0; c < dim; c++)
+      if (std::fabs(f[a * dim + c]) > ftol) return true;
+    return false;
+  };
+  std::vector<int> queue;
+  std::vector<unsigned char> queued(nnodes, 0);
+  for (size_t a = 0; a < nnodes; a++)
+    if (above(a)) {
+      queue.push_back((int) a);
+      queued[a] = 1;
+    }
+  size_t head = 0;
+  bigint moves = 0;
+  while (head < queue.size()) {
+    if (moves >= budget) {
+      out.moves += moves;
+      return false;
+    }
+    const int a = queue[head++];
+    queued[a] = 0;
+    if (!above(a)) continue;
+    // D on the free components (a direction no spring resists carries no force)
+    double m[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    for (int e = net.node_start[a]; e < net.node_start[a + 1]; e++) {
+      const Spring &s = net.springs[net.node_springs[e]];
+      if (!s.intact && contact_open(s.e)) continue;
+      double d[3] = {s.d[0], s.d[1], s.d[2]};
+      for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+      const double rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+      for (int p = 0; p < dim; p++)
+        for (int q = 0; q < dim; q++) m[p][q] += s.kn * d[p] * d[q] / rsq;
+    }
+    double rhs[3] = {0, 0, 0}, trace = 0.0;
+    for (int c = 0; c < dim; c++) trace += m[c][c];
+    for (int c = 0; c < dim; c++) {
+      if (net.free[(size_t) a * dim + c]) {
+        rhs[c] = f[(size_t) a * dim + c];
+        m[c][c] += 1.0e-12 * trace;
+      } else {
+        for (int q = 0; q < dim; q++) m[c][q] = m[q][c] = 0.0;
+        m[c][c] = 1.0;
+      }
+    }
+    double dx[3] = {0, 0, 0};
+    if (!solve_small(m, rhs, dx, dim)) continue;
+    for (int c = 0; c < dim; c++) u[(size_t) a * dim + c] += SMOOTH_OMEGA * dx[c];
+    moves++;
+    for (int e = net.node_start[a]; e < net.node_start[a + 1]; e++) {
+      Spring &s = net.springs[net.node_springs[e]];
+      const double old[3] = {s.f[0], s.f[1], s.f[2]};
+      spring_force(s, dim, u);
+      for (int c = 0; c < dim; c++) {
+        const double df = s.f[c] - old[c];
+        if (net.free[(size_t) s.a * dim + c]) f[(size_t) s.a * dim + c] += df;
+        if (net.free[(size_t) s.b * dim + c]) f[(size_t) s.b * dim + c] -= df;
+      }
+      for (const int b : {s.a, s.b})
+        if (!queued[b] && above(b)) {
+          queued[b] = 1;
+          queue.push_back(b);
+        }
+    }
+    if (head > 4096 && head * 2 > queue.size()) {
+      queue.erase(queue.begin(), queue.begin() + (long) head);
+      head = 0;
+    }
+  }
+  out.moves += moves;
+  return true;
 }
 
 /* ----------------------------------------------------------------------
@@ -360,6 +488,7 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
                                      std::vector<double> &u, Outcome &out)
 {
   std::vector<double> f;
+  bool smoothed = false;
   for (int step = 0; step <= NEWTON_MAX; step++) {
     const double largest = forces(net, u, f);
     int changed = 0;
@@ -374,6 +503,13 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
     out.changes += changed;
     if (largest <= ftol) return true;
     if (step == NEWTON_MAX) break;
+    // what a Newton step left: first locally (the forces are then evaluated anew)
+    if (step > 0 && !smoothed) {
+      smoothed = true;
+      smooth(net, u, f, (bigint) (SMOOTH_BUDGET * state.factor.ncols()) + 1, out);
+      step--;
+      continue;
+    }
     // the steps beyond the first come from the springs' turn since the factor was made:
     // a new factor at the current directions once they have cost as much as one
     if (step > 0) state.excess_steps += 1.0;
@@ -381,12 +517,74 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
       factorise(net, state, u);
       out.factorised++;
     }
-    state.factor.solve(f.data());
-    out.solves++;
-    for (size_t q = 0; q < u.size(); q++)
-      if (net.free[q]) u[q] += f[q];
+    newton_step(net, state, u, f, out);
   }
   return false;
+}
+
+/* ----------------------------------------------------------------------
+   u += K^-1 f, with no particle moving more than max_step.  A particle held
+   by springs in one line (a particle left on one bond, a chain) has no
+   stiffness across them but the shift: a force across them that comes only
+   from their turn since the factor was made would move it by that force over
+   the shift.  So a particle whose step exceeds max_step has its springs'
+   directions brought up to date in the factor (an update and a downdate
+   each) and the step is solved again; after STEP_ROUNDS such rounds the
+   factor is made anew at the current directions, and a step still too long
+   is scaled down to max_step (the Newton steps go on from there)
+------------------------------------------------------------------------- */
+
+void LatticeDirectRelax::newton_step(Network &net, LatticeDirectState &state,
+                                     std::vector<double> &u, const std::vector<double> &f,
+                                     Outcome &out)
+{
+  const int dim = net.dim;
+  const size_t nnodes = net.tags.size();
+  std::vector<double> step;
+  for (int round = 0;; round++) {
+    step = f;
+    state.factor.solve(step.data());
+    out.solves++;
+    std::vector<int> far;
+    double longest = 0.0;
+    for (size_t a = 0; a < nnodes; a++) {
+      double sq = 0.0;
+      for (int c = 0; c < dim; c++) sq += step[a * dim + c] * step[a * dim + c];
+      const double move = std::sqrt(sq);
+      longest = MAX(longest, move);
+      if (move > max_step) far.push_back((int) a);
+    }
+    if (far.empty()) break;
+    if (round == STEP_ROUNDS) {
+      factorise(net, state, u);
+      out.factorised++;
+      continue;
+    }
+    if (round > STEP_ROUNDS) {
+      const double scale = max_step / longest;
+      for (double &v : step) v *= scale;
+      out.damped++;
+      break;
+    }
+    for (const int a : far)
+      for (int e = net.node_start[a]; e < net.node_start[a + 1]; e++) {
+        const int k = net.node_springs[e];
+        const Spring &s = net.springs[k];
+        double d[3] = {s.d[0], s.d[1], s.d[2]};
+        for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+        const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (!(r > 0.0)) continue;
+        const LatticeSpring old = term(state, k);
+        for (int c = 0; c < 3; c++) state.n[3 * (size_t) k + c] = d[c] / r;
+        if (!state.in_factor[k]) continue;
+        // the new direction first, then the old one out: the matrix stays definite
+        state.factor.modify(term(state, k), 1);
+        state.factor.modify(old, -1);
+        out.changes += 2;
+      }
+  }
+  for (size_t q = 0; q < u.size(); q++)
+    if (net.free[q]) u[q] += step[q];
 }
 
 /* ----------------------------------------------------------------------
@@ -399,6 +597,20 @@ void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std
                                     const std::function<void(const Break &)> &on_break)
 {
   u.assign(net.free.size(), 0.0);
+  // the springs of each node, for the local smoothing
+  const size_t nnodes = net.tags.size();
+  net.node_start.assign(nnodes + 1, 0);
+  for (const Spring &s : net.springs) {
+    net.node_start[s.a + 1]++;
+    net.node_start[s.b + 1]++;
+  }
+  for (size_t a = 0; a < nnodes; a++) net.node_start[a + 1] += net.node_start[a];
+  net.node_springs.assign(net.node_start[nnodes], 0);
+  std::vector<int> fill(net.node_start.begin(), net.node_start.end() - 1);
+  for (size_t k = 0; k < net.springs.size(); k++) {
+    net.node_springs[fill[net.springs[k].a]++] = (int) k;
+    net.node_springs[fill[net.springs[k].b]++] = (int) k;
+  }
   prepare_factor(net, state, u, out);
   if (!equilibrate(net, state, u, out)) {
     out.relinearise = true;
@@ -451,6 +663,12 @@ LatticeDirectRelax::Outcome LatticeDirectRelax::pass(bigint maxbreak, bool break
                                                      const std::function<void(const Break &)> &on_break)
 {
   Outcome out;
+  // the radii are the pair style's of the force evaluation before the pass
+  max_step = STEP_FRACTION * pair->smallest_radius();
+  if (!(max_step > 0.0))
+    error->all(FLERR, "lattice/quasistatic relax direct needs particles of positive radius (the "
+               "smallest is {}): a Newton step may move a particle a twentieth of it",
+               pair->smallest_radius());
   Network net;
   gather(net);
   const int dim = domain->dimension;
@@ -460,6 +678,7 @@ LatticeDirectRelax::Outcome LatticeDirectRelax::pass(bigint maxbreak, bool break
     auto &state = pair->direct_state();
     if (!state) state = std::make_shared<LatticeDirectState>();
     try {
+      state->factor.set_threads(threads);
       break_loop(net, *state, u, maxbreak, break_all, out, on_break);
     } catch (std::exception &e) {
       failure = e.what();

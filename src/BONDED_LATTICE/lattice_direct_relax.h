@@ -66,7 +66,7 @@ struct LatticeDirectState {
 
 class LatticeDirectRelax : protected Pointers {
  public:
-  LatticeDirectRelax(class LAMMPS *, PairLatticeBond *pair, double ftol);
+  LatticeDirectRelax(class LAMMPS *, PairLatticeBond *pair, double ftol, int threads);
 
   // refuses what the method cannot treat (an error naming it)
   void check_model();
@@ -83,6 +83,8 @@ class LatticeDirectRelax : protected Pointers {
     bigint solves = 0;            // Newton steps (one solve each)
     bigint changes = 0;           // springs that joined or left the factor
     bigint factorised = 0;        // numeric factorisations
+    bigint moves = 0;             // particle moves of the local smoothing
+    bigint damped = 0;            // Newton steps shortened to max_step
     bool analysed = false;        // a new ordering (atoms or records changed)
     double largest_move = 0.0;    // largest displacement component of the pass
     bool relinearise = false;     // an equilibrium took NEWTON_MAX steps: the pass ended
@@ -98,6 +100,8 @@ class LatticeDirectRelax : protected Pointers {
  private:
   PairLatticeBond *pair;
   double ftol;
+  int threads;    // of the factor's factorisations and solves
+  double max_step;    // the longest move of a particle in one Newton step
   std::vector<tagint> held_ids;    // probe_fixes: ID, bits of every particle holding some
 
   // the network on rank 0, in ID order
@@ -108,6 +112,7 @@ class LatticeDirectRelax : protected Pointers {
     double kn, xb, fs0, mu_p;
     bool intact;
     double e;                 // stretch Xn at the current displacements
+    double f[3];              // its force on the owner there
   };
   struct Network {
     int dim = 0;
@@ -116,6 +121,7 @@ class LatticeDirectRelax : protected Pointers {
     std::vector<unsigned char> free;        // dim per node
     std::vector<Spring> springs;
     std::vector<std::pair<tagint, tagint>> keys;
+    std::vector<int> node_start, node_springs;    // the springs of each node (CSR)
   };
 
   void gather(Network &net);    // collective; the network on rank 0
@@ -125,6 +131,13 @@ class LatticeDirectRelax : protected Pointers {
   void factorise(Network &net, LatticeDirectState &state, const std::vector<double> &u);
   // rank 0: stretches and free forces at u; returns the largest force component
   double forces(Network &net, const std::vector<double> &u, std::vector<double> &f) const;
+  void spring_force(Spring &s, int dim, const std::vector<double> &u) const;
+  // rank 0: Gauss-Seidel moves of the particles whose force exceeds ftol, at most budget
+  bool smooth(Network &net, std::vector<double> &u, std::vector<double> &f, bigint budget,
+              Outcome &out) const;
+  // rank 0: u += K^-1 f, no particle moving more than max_step
+  void newton_step(Network &net, LatticeDirectState &state, std::vector<double> &u,
+                   const std::vector<double> &f, Outcome &out);
   // rank 0: Newton steps to ftol; false if they did not get there
   bool equilibrate(Network &net, LatticeDirectState &state, std::vector<double> &u, Outcome &out);
   // rank 0: the seed's loop

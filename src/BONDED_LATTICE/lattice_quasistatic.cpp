@@ -3,6 +3,7 @@
 
    lattice/quasistatic ftol F [relax minimize|run N|local|direct] [omega W]
                               [maxsteps M] [break one|all] [maxbreak K] [quiet yes|no]
+                              [threads N]
 
    Breaking is switched off in pair_style lattice/bond while the command
    runs, so that a relaxation only finds the equilibrium of the network as
@@ -59,7 +60,7 @@ void LatticeQuasistatic::command(int narg, char **arg)
   if (!pair) error->all(FLERR, "lattice/quasistatic requires pair_style lattice/bond");
   if (narg < 2 || strcmp(arg[0], "ftol") != 0)
     error->all(FLERR, "lattice/quasistatic needs: ftol F [relax minimize|run N|local|direct] [omega W] "
-               "[maxsteps M] [break one|all] [maxbreak K] [quiet yes|no]");
+               "[maxsteps M] [break one|all] [maxbreak K] [quiet yes|no] [threads N]");
   ftol = utils::numeric(FLERR, arg[1], false, lmp);
   if (!(ftol > 0.0))
     error->all(FLERR, "lattice/quasistatic ftol {} is out of range: need > 0 (force units, the "
@@ -116,9 +117,14 @@ void LatticeQuasistatic::command(int narg, char **arg)
       breaks_file = value;
     } else if (key == "quiet") {
       quiet = utils::logical(FLERR, value, false, lmp);
+    } else if (key == "threads") {
+      threads = utils::inumeric(FLERR, value, false, lmp);
+      if (threads < 1)
+        error->all(FLERR, "lattice/quasistatic threads {} is out of range: need >= 1 (the threads "
+                   "of relax direct's factor and solves on rank 0)", threads);
     } else {
       error->all(FLERR, "Unknown lattice/quasistatic keyword {}: valid are relax, omega, maxsteps, "
-                 "break, maxbreak, breaks, quiet", key);
+                 "break, maxbreak, breaks, quiet, threads", key);
     }
     iarg += 2;
   }
@@ -423,19 +429,19 @@ void LatticeQuasistatic::record_break(tagint owner, tagint partner, BreakMode mo
 
 /* ----------------------------------------------------------------------
    relax direct: passes of (force evaluation, and, unless no force component
-   exceeds ftol and no bond its threshold, an exact linear relaxation with
-   its breaks).  Counts solves in `solves` and factorisations in
-   `factorisations`
+   exceeds ftol and no bond its threshold, rank 0's Newton steps and breaks,
+   LatticeDirectRelax::pass).  Counts solves in `solves` and factorisations
+   in `factorisations`
 ------------------------------------------------------------------------- */
 
 void LatticeQuasistatic::run_direct(bigint &broken, int &tension, int &shear, bigint &relaxations,
                                     bigint &solves, bigint &factorisations, double &worst)
 {
-  LatticeDirectRelax dr(lmp, pair, ftol);
+  LatticeDirectRelax dr(lmp, pair, ftol, threads);
   dr.check_model();
-  // passes in a row that broke nothing: each is a Newton step of the linear
-  // stiffness, which converges by about the strain per pass; a hundred means
-  // the pair style's forces and the linear model disagree (e.g. contacts)
+  // passes in a row that broke nothing: a pass ends without a break when its
+  // end state needs checking (moved particles, new contacts) or an equilibrium
+  // took too many Newton steps; a hundred means it does not settle
   static constexpr int MAX_IDLE_PASSES = 100;
   int idle = 0;
   while (true) {

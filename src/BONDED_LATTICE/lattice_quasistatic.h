@@ -43,6 +43,7 @@ class LatticeQuasistatic : public Command {
   bool break_all = false;       // break every bond past its threshold, else the worst one
   bigint maxbreak = -1;         // most bonds broken in one call, -1: no limit
   bool quiet = false;           // no output of the relaxations (minimiser and run summaries)
+  int threads = 1;              // relax direct: threads of the factor and solves (rank 0)
   std::string breaks_file;      // keyword breaks: a line per broken bond appended there
   FILE *breaks_fp = nullptr;    // (rank 0)
 

@@ -146,6 +146,7 @@ def test_minimize_with_shear_springs_is_refused(tmp_path):
     ("ftol 1 relax local omega 2", r"omega 2 is out of range: need 0 < omega < 2"),
     ("ftol 1 relax local", r"relax local needs bonds without shear springs"),
     ("ftol 1 relax direct", r"relax direct needs bonds without shear springs"),
+    ("ftol 1 relax direct threads 0", r"threads 0 is out of range: need >= 1"),
     ("ftol 1 maxsteps 0", r"maxsteps 0 is out of range"),
     ("ftol 1 colour red", r"Unknown lattice/quasistatic keyword colour"),
 ])
@@ -354,3 +355,33 @@ def test_relax_local_and_direct_in_3d_break_what_the_minimiser_breaks_in_its_ord
     assert orders["local2"] == orders["fire"]
     assert orders["direct"] == orders["fire"]
     assert orders["direct2"] == orders["fire"]
+
+
+def test_relax_direct_moves_a_particle_left_on_one_bond_along_it_only(lmp_instance):
+    """A particle held by a single bond has no stiffness across it. Turned by 5e-4 rad since
+    the factor was made (below the 1e-3 at which a new one is made) and stretched, its force
+    along the new direction has a component across the factor's old one, which the factor
+    resists only by its shift (1e-12 Kn): a Newton step with that factor alone would move it
+    by metres. relax direct must bring it back to the rest length along the new direction:
+    the particle's y (the turn) kept, the bond's stretch relaxed."""
+    lmp = lmp_instance
+    lmp.commands_string(opening(box=CHAIN_BOX) + atoms_at([(0, 0), (D, 0)]) + sphere_props()
+                        + pair_lines(coeffs(QUARTZ[2], Ks=0, Xb=X0, Fs0=1.0e6, mu_p=0.0)) + """\
+neighbor        1.0e-4 bin
+group           one id 1
+group           two id 2
+fix             hold one setforce 0 0 0
+run             0
+""")
+    lmp.command(f"displace_atoms two move {0.5 * X0} 0 0 units box")
+    lmp.command("lattice/quasistatic ftol 1.0e-9 relax direct")    # the factor: along x
+    turn = 5.0e-4
+    lmp.command(f"displace_atoms two move {0.5 * X0} {turn * D} 0 units box")
+    lmp.command("lattice/quasistatic ftol 1.0e-9 relax direct")
+    x = lmp.numpy.extract_atom("x")
+    ids = list(lmp.numpy.extract_atom("id"))
+    p1, p2 = x[ids.index(1)], x[ids.index(2)]
+    # the rest length D to 1e-9 N / Kn (the tolerance over the stiffness), the y kept to
+    # round-off: a central spring pulls along itself, and y only turns it further
+    assert np.hypot(*(p2[:2] - p1[:2])) == pytest.approx(D, abs=1e-9 / KN * 10)
+    assert p2[1] == pytest.approx(turn * D * (1 - X0 / (2 * D)), rel=1e-6)
