@@ -304,7 +304,7 @@ def scene_options(p: argparse.ArgumentParser) -> None:
     relax_option(p, s["relax"])
     p.add_argument("--threads", type=int, default=s["threads"],
                    help="quasistatic, --relax direct: threads of its factor and solves on rank "
-                   "0 (default %(default)s; with --np 1 on a 2-core machine, 2)")
+                   "0 (default %(default)s; results identical for any number)")
     p.add_argument("--deformation", choices=DEFORMATIONS, default=s["deformation"],
                    help="pure shear (default: the other axis keeps the area) or uniaxial (the "
                    "walls across the other axis held)")

@@ -103,8 +103,8 @@ double factor_in_solves(const LatticeSparseCholesky &factor)
 }    // namespace
 
 // values sent per atom (tag apart): x (dim), held bits
-// values per record: the owner-to-partner vector (3), r, touch, kn, xb, fs0, mu_p, intact, 0
-static constexpr int RECORD_VALUES = 11;
+// values per record: the owner-to-partner vector (3), r, touch, kn, xb, fs0, mu_p, intact
+static constexpr int RECORD_VALUES = 10;
 
 LatticeDirectRelax::LatticeDirectRelax(LAMMPS *lmp, PairLatticeBond *pair_in, double ftol_in,
                                        int threads_in) :
@@ -130,7 +130,7 @@ void LatticeDirectRelax::probe_fixes()
 namespace {
 template <typename T>
 std::vector<T> gather_to_root(const std::vector<T> &mine, MPI_Datatype type, MPI_Comm world,
-                              int nprocs, std::vector<int> *counts_out = nullptr)
+                              int nprocs)
 {
   int count = (int) mine.size();
   std::vector<int> counts(nprocs, 0), offsets(nprocs, 0);
@@ -138,7 +138,6 @@ std::vector<T> gather_to_root(const std::vector<T> &mine, MPI_Datatype type, MPI
   for (int p = 1; p < nprocs; p++) offsets[p] = offsets[p - 1] + counts[p - 1];
   std::vector<T> all(offsets[nprocs - 1] + counts[nprocs - 1]);
   MPI_Gatherv(mine.data(), count, type, all.data(), counts.data(), offsets.data(), type, 0, world);
-  if (counts_out) *counts_out = counts;
   return all;
 }
 }    // namespace
@@ -179,7 +178,7 @@ void LatticeDirectRelax::gather(Network &net)
       record_tags.push_back(tag[i]);
       record_tags.push_back(tag[j]);
       const double v[RECORD_VALUES] = {-d.dx, -d.dy, -d.dz, d.length(), radius.touch(i, j), p.kn,
-                                       p.xb, p.fs0, p.mu_p, st[s] == LB_INTACT ? 1.0 : 0.0, 0.0};
+                                       p.xb, p.fs0, p.mu_p, st[s] == LB_INTACT ? 1.0 : 0.0};
       record_values.insert(record_values.end(), v, v + RECORD_VALUES);
     }
   }
@@ -316,7 +315,7 @@ double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
 ------------------------------------------------------------------------- */
 
 bool LatticeDirectRelax::smooth(Network &net, std::vector<double> &u, std::vector<double> &f,
-                                bigint budget, Outcome &out) const
+                                bigint budget) const
 {
   const int dim = net.dim;
   const size_t nnodes = net.tags.size();
@@ -336,7 +335,6 @@ bool LatticeDirectRelax::smooth(Network &net, std::vector<double> &u, std::vecto
   bigint moves = 0;
   while (head < queue.size()) {
     if (moves >= budget) {
-      out.moves += moves;
       return false;
     }
     const int a = queue[head++];
@@ -388,7 +386,6 @@ bool LatticeDirectRelax::smooth(Network &net, std::vector<double> &u, std::vecto
       head = 0;
     }
   }
-  out.moves += moves;
   return true;
 }
 
@@ -506,7 +503,7 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
     // what a Newton step left: first locally (the forces are then evaluated anew)
     if (step > 0 && !smoothed) {
       smoothed = true;
-      smooth(net, u, f, (bigint) (SMOOTH_BUDGET * state.factor.ncols()) + 1, out);
+      smooth(net, u, f, (bigint) (SMOOTH_BUDGET * state.factor.ncols()) + 1);
       step--;
       continue;
     }
@@ -563,7 +560,6 @@ void LatticeDirectRelax::newton_step(Network &net, LatticeDirectState &state,
     if (round > STEP_ROUNDS) {
       const double scale = max_step / longest;
       for (double &v : step) v *= scale;
-      out.damped++;
       break;
     }
     for (const int a : far)
@@ -722,17 +718,12 @@ LatticeDirectRelax::Outcome LatticeDirectRelax::pass(bigint maxbreak, bool break
 
   // move the local atoms
   double **x = atom->x;
-  double largest = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     const auto it = std::lower_bound(tags.begin(), tags.end(), atom->tag[i]);
     if (it == tags.end() || *it != atom->tag[i]) continue;
     const size_t n = it - tags.begin();
-    for (int c = 0; c < dim; c++) {
-      x[i][c] += u[n * dim + c];
-      largest = MAX(largest, std::fabs(u[n * dim + c]));
-    }
+    for (int c = 0; c < dim; c++) x[i][c] += u[n * dim + c];
   }
-  MPI_Allreduce(&largest, &out.largest_move, 1, MPI_DOUBLE, MPI_MAX, world);
 
   // break the records on their owners
   FixLatticeBondStore *store = pair->store();

@@ -83,10 +83,7 @@ class LatticeDirectRelax : protected Pointers {
     bigint solves = 0;            // Newton steps (one solve each)
     bigint changes = 0;           // springs that joined or left the factor
     bigint factorised = 0;        // numeric factorisations
-    bigint moves = 0;             // particle moves of the local smoothing
-    bigint damped = 0;            // Newton steps shortened to max_step
     bool analysed = false;        // a new ordering (atoms or records changed)
-    double largest_move = 0.0;    // largest displacement component of the pass
     bool relinearise = false;     // an equilibrium took NEWTON_MAX steps: the pass ended
   };
   // after a force evaluation (run 0): one pass as described above, breaking
@@ -133,8 +130,8 @@ class LatticeDirectRelax : protected Pointers {
   double forces(Network &net, const std::vector<double> &u, std::vector<double> &f) const;
   void spring_force(Spring &s, int dim, const std::vector<double> &u) const;
   // rank 0: Gauss-Seidel moves of the particles whose force exceeds ftol, at most budget
-  bool smooth(Network &net, std::vector<double> &u, std::vector<double> &f, bigint budget,
-              Outcome &out) const;
+  bool smooth(Network &net, std::vector<double> &u, std::vector<double> &f,
+              bigint budget) const;
   // rank 0: u += K^-1 f, no particle moving more than max_step
   void newton_step(Network &net, LatticeDirectState &state, std::vector<double> &u,
                    const std::vector<double> &f, Outcome &out);
