@@ -195,7 +195,7 @@ def scene_from_args(args: argparse.Namespace):
         bond = central_spring_bond(rock.E, rock.Tu, args.d)
     return Scene(args.kind, n_x=args.n, n_y=args.ny, d=args.d, bond=bond,
                  layer_thickness=args.layer_thickness, layer_contrast=args.contrast,
-                 n_grains=args.grains, stiffness_sd=args.stiffness_sd,
+                 matrix_strength=args.matrix_strength, n_grains=args.grains, stiffness_sd=args.stiffness_sd,
                  strength_min=args.strength[0], strength_max=args.strength[1],
                  boundary_strength=args.boundary_strength, seed=args.grain_seed,
                  n_expanding=args.expanding, mode=args.mode, strain_step=args.strain_step,

@@ -273,6 +273,9 @@ SCENE_NUMBERS = {
                             "height (default %(default)s)"),
         "layer_contrast": ("--contrast", "layer stiffness / matrix stiffness (default "
                            "%(default)s)"),
+        "matrix_strength": ("--matrix-strength", "the matrix's strength factor, the "
+                            "layer's 1: its bonds' breaking force x this (an interface "
+                            "bond's x the mean; default %(default)s)"),
         "n_expanding": ("--expanding", "growing grains (default %(default)s)"),
     },
     "output": {

@@ -45,7 +45,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .io.data import GRAINS_SECTION, read_grains  # noqa: F401  (read_grains: the reader)
+from .io.data import GRAINS_SECTION, read_grain_strengths, read_grains  # noqa: F401  (the readers)
 
 SQRT3 = math.sqrt(3.0)
 LAYER_SPACING = math.sqrt(2.0 / 3.0)  # between close-packed layers, in units of d
@@ -410,7 +410,8 @@ def check_atom_style(atom_style: str) -> str:
 
 def write_data(lattice: Lattice, path: str | Path, mass: float,
                atom_types: int | None = None, grain: np.ndarray | None = None,
-               stiffness: np.ndarray | None = None, atom_style: str = "sphere") -> None:
+               stiffness: np.ndarray | None = None, atom_style: str = "sphere",
+               strength: np.ndarray | None = None) -> None:
     """Write a LAMMPS data file for ``atom_style sphere`` (or ``atomic``).
 
     Atoms are numbered 1..n in the order of ``lattice.positions``; each line is
@@ -433,6 +434,10 @@ def write_data(lattice: Lattice, path: str | Path, mass: float,
         LAMMPS' ``fix property/atom``, read by ``fix grains all property/atom
         i_grain d_stiffness ghost yes`` defined before ``read_data FILE fix
         grains NULL Grains`` (:func:`read_grains` reads it back).
+    strength: per-particle strength factors (> 0; needs grain and stiffness), a
+        fourth column of the Grains section, for ``fix property/atom i_grain
+        d_stiffness d_strength`` and the pair style's ``strength_factor
+        d_strength`` (:func:`read_grain_strengths` reads it back).
     """
     mass = float(mass)
     if not mass > 0:
@@ -441,6 +446,10 @@ def write_data(lattice: Lattice, path: str | Path, mass: float,
     if (grain is None) != (stiffness is None):
         raise ValueError("grain and stiffness go together (fix property/atom i_grain "
                          "d_stiffness reads both): give both or neither")
+    if strength is not None and grain is None:
+        raise ValueError("strength factors go with grain ids and stiffness factors (fix "
+                         "property/atom i_grain d_stiffness d_strength reads all three): give "
+                         "grain and stiffness too")
     if grain is not None:
         from .grains import check_grain_ids, check_stiffness_factors
 
@@ -449,6 +458,11 @@ def write_data(lattice: Lattice, path: str | Path, mass: float,
         if len(grain) != lattice.n or len(stiffness) != lattice.n:
             raise ValueError(f"{len(grain)} grain ids and {len(stiffness)} stiffness factors "
                              f"for {lattice.n} particles: need one of each per particle")
+        if strength is not None:
+            strength = check_stiffness_factors(strength, "strength")
+            if len(strength) != lattice.n:
+                raise ValueError(f"{len(strength)} strength factors for {lattice.n} particles: "
+                                 "need one per particle")
     ntypes = int(lattice.types.max(initial=1)) if atom_types is None else int(atom_types)
     if lattice.n and (lattice.types.min() < 1 or lattice.types.max() > ntypes):
         raise ValueError(f"atom types must lie in 1..{ntypes}")
@@ -484,6 +498,10 @@ def write_data(lattice: Lattice, path: str | Path, mass: float,
                 for k, (t, (x, y, z)) in enumerate(zip(types, positions))]
     if grain is not None:
         body += ["", GRAINS_SECTION, ""]
-        body += [f"{k + 1} {g} {s!r}"
-                 for k, (g, s) in enumerate(zip(grain.tolist(), stiffness.tolist()))]
+        if strength is None:
+            body += [f"{k + 1} {g} {s!r}"
+                     for k, (g, s) in enumerate(zip(grain.tolist(), stiffness.tolist()))]
+        else:
+            body += [f"{k + 1} {g} {s!r} {f!r}" for k, (g, s, f) in
+                     enumerate(zip(grain.tolist(), stiffness.tolist(), strength.tolist()))]
     Path(path).write_text("\n".join(lines + body) + "\n")

@@ -288,7 +288,7 @@ def write_scene(scene: Scene, out: str | Path, deck_name: str | None = None) -> 
     out.mkdir(parents=True, exist_ok=True)
     model = build_model(scene)
     write_data(model.lattice, out / DATA_FILE, scene.mass, grain=model.grain,
-               stiffness=model.stiffness, atom_style=scene.atom_style)
+               stiffness=model.stiffness, atom_style=scene.atom_style, strength=model.strength)
     name = deck_name or f"in.{scene.kind}.{scene.mode}"
     (out / name).write_text(deck_text(scene, model))
     return {"deck": str(out / name), "data": str(out / DATA_FILE), "particles": scene.n,

@@ -78,8 +78,10 @@ class Scene:
     d/2.  The seed's medium and high resolutions are 400 x 462 = 184,800 and
     800 x 922 = 737,600 particles.
 
-    Heterogeneity: layer_thickness (fraction of the box height) and
-    layer_contrast (layer stiffness / matrix); n_grains Voronoi grains with
+    Heterogeneity: layer_thickness (fraction of the box height),
+    layer_contrast (layer stiffness / matrix) and matrix_strength (the
+    matrix particles' strength factor, the layer's 1: a bond's breaking force
+    takes the mean of its particles' factors); n_grains Voronoi grains with
     stiffness factors from a Gaussian (mean 1, stiffness_sd); every bond's
     strength factor uniform in [strength_min, strength_max], times
     boundary_strength across grain (and layer) boundaries (default 0.5 for
@@ -113,6 +115,7 @@ class Scene:
     rho: float = 2650.0
     layer_thickness: float = 0.2
     layer_contrast: float = 3.0
+    matrix_strength: float = 1.0   # layer scenes: the matrix's breaking-force factor
     n_grains: int = 12
     stiffness_sd: float = 0.15
     strength_min: float = 0.8
@@ -181,11 +184,16 @@ class Scene:
             raise ValueError(f"threads = {self.threads} with relax = {self.relax!r}: the threads "
                              "are relax direct's (its factor and solves); use relax direct or "
                              "threads 1")
-        for name in ("d", "rho", "layer_thickness", "layer_contrast", "strain_step",
+        for name in ("d", "rho", "layer_thickness", "layer_contrast", "matrix_strength",
+                     "strain_step",
                      "relax_tolerance", "crossings", "dt_fraction"):
             value = getattr(self, name)
             if not (value > 0 and math.isfinite(value)):
                 raise ValueError(f"{name} = {value} is out of range: need 0 < {name} < inf")
+        if self.matrix_strength != 1.0 and not self.kind.startswith("layer"):
+            raise ValueError(f"matrix_strength = {self.matrix_strength} with kind = "
+                             f"{self.kind!r}: the matrix is the layer scenes' (use "
+                             "layer-extension or layer-compression, or matrix_strength 1)")
         if not self.layer_thickness < 1:
             raise ValueError(f"layer_thickness = {self.layer_thickness} is out of range: need "
                              "0 < layer_thickness < 1 (a fraction of the box height)")
@@ -256,7 +264,8 @@ class Scene:
 
     def pair_options(self) -> GrainPairOptions:
         return GrainPairOptions(self.strength_min, self.strength_max, self.seed,
-                                self.boundary_factor)
+                                self.boundary_factor,
+                                particle_strength=self.matrix_strength != 1.0)
 
     def dt(self) -> float:
         """Time step: dt_fraction x sqrt(2 m / (6 Kn k_max)), the stiffest grain's bonds."""

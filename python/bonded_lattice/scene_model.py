@@ -126,12 +126,14 @@ def expanding_grains(grain: np.ndarray, positions: np.ndarray, d: float, n_grain
 
 @dataclass
 class SceneModel:
-    """The particles of a scene with their grain ids and stiffness factors."""
+    """The particles of a scene with their grain ids and stiffness factors (and strength
+    factors, None unless the scene's matrix_strength differs from 1)."""
 
     lattice: Lattice
     grain: np.ndarray
     stiffness: np.ndarray
     expanding: list[int]
+    strength: np.ndarray | None = None
 
 
 def grain_model(scene: Scene) -> GrainModel:
@@ -148,7 +150,7 @@ def grain_model(scene: Scene) -> GrainModel:
 
 
 def build_model(scene: Scene) -> SceneModel:
-    """Lattice, grain ids and stiffness factors of a scene
+    """Lattice, grain ids and stiffness (and strength) factors of a scene
     (:func:`bonded_lattice.grains.grain_arrays` of :func:`grain_model`)."""
     periodic = scene.boundary == "periodic"
     lat = box_lattice(scene.n_x, scene.rows, scene.d, periodic)
@@ -158,4 +160,7 @@ def build_model(scene: Scene) -> SceneModel:
     if scene.kind == "expanding":
         expanding = expanding_grains(grain, lat.positions, scene.d, scene.n_grains, scene.seed,
                                      scene.n_expanding, box=box, walls=not periodic)
-    return SceneModel(lat, grain, stiffness, expanding)
+    strength = None
+    if scene.matrix_strength != 1.0:    # the layer's particles are grain 1, the matrix's 0
+        strength = np.where(grain == 0, scene.matrix_strength, 1.0)
+    return SceneModel(lat, grain, stiffness, expanding, strength)

@@ -47,26 +47,30 @@ static inline double bond_uniform(bigint seed, tagint a, tagint b)
 LatticeHeterogeneity::LatticeHeterogeneity(LAMMPS *lmp) :
     Pointers(lmp), flag(0), strength_min(1.0), strength_max(1.0),
     boundary_strength(DEFAULT_BOUNDARY_STRENGTH), seed(0), stiffness_index(-1), grain_index(-1),
-    stiffness_factor(nullptr), grain_id(nullptr)
+    strength_index(-1), stiffness_factor(nullptr), grain_id(nullptr), particle_strength(nullptr)
 {
 }
 
 /* ----------------------------------------------------------------------
-   [stiffness d_name] [grain i_name] [strength min max] [seed n]
-   [boundary_strength f]; the caller checked that key has a value
+   [stiffness d_name] [grain i_name] [strength min max] [strength_factor
+   d_name] [seed n] [boundary_strength f]; the caller checked that key has a
+   value
 ------------------------------------------------------------------------- */
 
 int LatticeHeterogeneity::parse_keyword(int narg, char **arg, int iarg)
 {
   const std::string key = arg[iarg];
-  if (key == "stiffness" || key == "grain") {
+  if (key == "stiffness" || key == "grain" || key == "strength_factor") {
     const std::string name = arg[iarg + 1];
-    const char *prefix = (key == "stiffness") ? "d_" : "i_";
+    const bool integer = (key == "grain");
+    const char *prefix = integer ? "i_" : "d_";
+    const char *what = integer ? "an integer grain ID"
+        : (key == "stiffness") ? "a floating-point stiffness factor"
+                               : "a floating-point strength factor";
     if (name.size() < 3 || name.compare(0, 2, prefix) != 0)
       error->all(FLERR, "pair_style lattice/bond {} {}: give a per-atom property of fix "
-                 "property/atom as {}name ({} per particle)", key, name, prefix,
-                 key == "stiffness" ? "a floating-point stiffness factor" : "an integer grain ID");
-    (key == "stiffness" ? stiffness_name : grain_name) = name.substr(2);
+                 "property/atom as {}name ({} per particle)", key, name, prefix, what);
+    (key == "stiffness" ? stiffness_name : integer ? grain_name : strength_name) = name.substr(2);
     flag = 1;
     return 2;
   }
@@ -112,16 +116,16 @@ void LatticeHeterogeneity::check_keywords() const
 }
 
 /* ----------------------------------------------------------------------
-   the per-atom properties named by the keywords stiffness and grain (fix
-   property/atom), checked on every run.  Their ghost values are sent by
+   the per-atom properties named by the keywords stiffness, grain and
+   strength_factor (fix property/atom), checked on every run.  Their ghost values are sent by
    share_ghosts() at every reneighbouring, so the fix does not need
    "ghost yes"
 ------------------------------------------------------------------------- */
 
 void LatticeHeterogeneity::find()
 {
-  stiffness_index = grain_index = -1;
-  stiffness_factor = nullptr;
+  stiffness_index = grain_index = strength_index = -1;
+  stiffness_factor = particle_strength = nullptr;
   grain_id = nullptr;
   if (!flag) return;
   auto lookup = [&](const std::string &name, int want_double) -> int {
@@ -155,6 +159,15 @@ void LatticeHeterogeneity::find()
         bad = fmt::format("pair_style lattice/bond: atom {} has grain ID i_{} = {}; need >= 0",
                           atom->tag[i], grain_name, grain_id[i]);
   }
+  if (!strength_name.empty()) {
+    strength_index = lookup(strength_name, 1);
+    particle_strength = atom->dvector[strength_index];
+    for (int i = 0; i < atom->nlocal && bad.empty(); i++)
+      if (!(particle_strength[i] > 0.0) || !std::isfinite(particle_strength[i]))
+        bad = fmt::format("pair_style lattice/bond: atom {} has strength factor d_{} = {}; need "
+                          "a finite value > 0 (it multiplies the breaking force Kn*Xb and Fs0)",
+                          atom->tag[i], strength_name, particle_strength[i]);
+  }
   // (every rank is here, at init: the message of any rank, printed by rank 0)
   lattice_error_from_any_rank(lmp, FLERR, !bad.empty(), bad);
 }
@@ -165,6 +178,7 @@ void LatticeHeterogeneity::fetch()
 {
   stiffness_factor = (stiffness_index >= 0) ? atom->dvector[stiffness_index] : nullptr;
   grain_id = (grain_index >= 0) ? atom->ivector[grain_index] : nullptr;
+  particle_strength = (strength_index >= 0) ? atom->dvector[strength_index] : nullptr;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -186,7 +200,8 @@ double LatticeHeterogeneity::bond_stiffness_factor(int i, int j) const
 
 /* ----------------------------------------------------------------------
    the bond's strength factor: uniform in [strength_min, strength_max] per
-   bond, times boundary_strength if the particles belong to different grains
+   bond, times the mean of the particles' strength factors, times
+   boundary_strength if the particles belong to different grains
 ------------------------------------------------------------------------- */
 
 double LatticeHeterogeneity::bond_strength_factor(int i, int j) const
@@ -194,6 +209,7 @@ double LatticeHeterogeneity::bond_strength_factor(int i, int j) const
   double g = strength_min;
   if (strength_max > strength_min)
     g += (strength_max - strength_min) * bond_uniform(seed, atom->tag[i], atom->tag[j]);
+  if (particle_strength) g *= 0.5 * (particle_strength[i] + particle_strength[j]);
   if (grain_id && grain_id[i] != grain_id[j]) g *= boundary_strength;
   return g;
 }
@@ -215,8 +231,8 @@ void LatticeHeterogeneity::cache_bond_factors(int i, const int *idx, int nrec, i
 }
 
 /* ----------------------------------------------------------------------
-   forward communication: the owners' stiffness factors and grain IDs (a
-   grain ID is exact as a double)
+   forward communication: the owners' stiffness factors, grain IDs (a
+   grain ID is exact as a double) and strength factors
 ------------------------------------------------------------------------- */
 
 int LatticeHeterogeneity::pack_forward(int n, const int *list, double *buf)
@@ -225,6 +241,7 @@ int LatticeHeterogeneity::pack_forward(int n, const int *list, double *buf)
   for (int k = 0; k < n; k++) {
     buf[m++] = stiffness_factor ? stiffness_factor[list[k]] : 1.0;
     buf[m++] = grain_id ? (double) grain_id[list[k]] : 0.0;
+    buf[m++] = particle_strength ? particle_strength[list[k]] : 1.0;
   }
   return m;
 }
@@ -237,7 +254,8 @@ void LatticeHeterogeneity::unpack_forward(int n, int first, const double *buf)
   for (int i = first; i < first + n; i++) {
     if (stiffness_factor) stiffness_factor[i] = buf[m];
     if (grain_id) grain_id[i] = (int) buf[m + 1];
-    m += 2;
+    if (particle_strength) particle_strength[i] = buf[m + 2];
+    m += 3;
   }
 }
 
@@ -306,6 +324,22 @@ void LatticeHeterogeneity::read_restart(FILE *fp, bool present)
   strength_min = range[0];
   strength_max = range[1];
   boundary_strength = range[2];
+}
+
+/* ----------------------------------------------------------------------
+   restart settings of format 5: the name of the strength_factor property
+   ("" without the keyword); older files have none
+------------------------------------------------------------------------- */
+
+void LatticeHeterogeneity::write_restart_strength_factor(FILE *fp) const
+{
+  write_string(fp, strength_name);
+}
+
+void LatticeHeterogeneity::read_restart_strength_factor(FILE *fp, bool present)
+{
+  strength_name.clear();
+  if (present) strength_name = read_string(lmp, fp);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -2,9 +2,10 @@
    BONDED_LATTICE package for LAMMPS: bonded close-packed lattice DEM.
 
    Heterogeneous rock for pair_style lattice/bond (keywords stiffness, grain,
-   strength, seed, boundary_strength; docs/pair_lattice_bond.rst,
-   "Heterogeneous rock"): per-particle stiffness factors and grain IDs (fix
-   property/atom), their ghost values, and each bond's stiffness and
+   strength, strength_factor, seed, boundary_strength;
+   docs/pair_lattice_bond.rst, "Heterogeneous rock"): per-particle stiffness
+   factors, strength factors and grain IDs (fix property/atom), their ghost
+   values, and each bond's stiffness and
    strength factors, cached per record after every reneighbouring so that
    the force loop needs neither the hash nor the partner's properties.
 ------------------------------------------------------------------------- */
@@ -51,7 +52,8 @@ class LatticeHeterogeneity : protected Pointers, public LatticeForwardPart {
 
   // the bond's stiffness factor (mean of the particles' factors) and strength
   // factor (uniform in [strength_min, strength_max] from a hash of seed and
-  // tags, times boundary_strength across grain boundaries)
+  // tags, times the mean of the particles' strength factors, times
+  // boundary_strength across grain boundaries)
   double bond_stiffness_factor(int i, int j) const;
   double bond_strength_factor(int i, int j) const;
   LatticeBondParams bond_params(const LatticeBondParams &p, int i, int j) const
@@ -67,9 +69,12 @@ class LatticeHeterogeneity : protected Pointers, public LatticeForwardPart {
     return bond_factor.data() + (size_t) i * stride * 2;
   }
 
-  // restart settings (format 3 on): the keywords
+  // restart settings (format 3 on): the keywords; format 5 adds the keyword
+  // strength_factor, written after the pair style's own format-4 word
   void write_restart(FILE *fp) const;
   void read_restart(FILE *fp, bool present);    // absent (older files): none
+  void write_restart_strength_factor(FILE *fp) const;
+  void read_restart_strength_factor(FILE *fp, bool present);
 
   int pack_forward(int n, const int *list, double *buf) override;
   void unpack_forward(int n, int first, const double *buf) override;
@@ -79,12 +84,15 @@ class LatticeHeterogeneity : protected Pointers, public LatticeForwardPart {
   int flag;                           // 1 if any keyword is given
   std::string stiffness_name;         // per-particle stiffness factor, d_ property or ""
   std::string grain_name;             // per-particle grain ID, i_ property or ""
+  std::string strength_name;          // per-particle strength factor, d_ property or ""
   double strength_min, strength_max;  // per-bond strength factor range
   double boundary_strength;           // strength factor of bonds between grains
   bigint seed;
-  int stiffness_index, grain_index;   // their indices among the custom properties, or -1
+  int stiffness_index, grain_index, strength_index;    // their indices among the custom
+                                                       // properties, or -1
   double *stiffness_factor;           // their arrays (see fetch)
   int *grain_id;
+  double *particle_strength;
   std::vector<double> bond_factor;    // see cache_bond_factors
 };
 

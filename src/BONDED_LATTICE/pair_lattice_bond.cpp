@@ -117,7 +117,8 @@ void PairLatticeBond::allocate()
    pair_style lattice/bond [tolerance t] [maxslot n] [cutoff rc] [diameter D]
                            [shear_frame fixed|corotational]
                            [stiffness d_name] [grain i_name]
-                           [strength min max] [seed n] [boundary_strength f]
+                           [strength min max] [strength_factor d_name]
+                           [seed n] [boundary_strength f]
 ------------------------------------------------------------------------- */
 
 void PairLatticeBond::settings(int narg, char **arg)
@@ -162,7 +163,8 @@ void PairLatticeBond::settings(int narg, char **arg)
                    "corotational", value);
     } else {
       error->all(FLERR, "Unknown pair_style lattice/bond keyword {}: valid are tolerance, maxslot, "
-                 "cutoff, diameter, shear_frame, stiffness, grain, strength, seed, boundary_strength", key);
+                 "cutoff, diameter, shear_frame, stiffness, grain, strength, strength_factor, seed, "
+                 "boundary_strength", key);
     }
     iarg += 2;
   }
@@ -569,10 +571,11 @@ void PairLatticeBond::unpack_reverse_comm(int n, int *list, double *buf)
 /* ----------------------------------------------------------------------
    settings: tolerance, then a negative settings format (files before the
    shear_frame keyword have maxslot >= 1 there), maxslot, cutoff, shear_frame;
-   format 3 adds the heterogeneity keywords, format 4 the keyword diameter
+   format 3 adds the heterogeneity keywords, format 4 the keyword diameter,
+   format 5 the keyword strength_factor
 ------------------------------------------------------------------------- */
 
-static constexpr int SETTINGS_FORMAT = 4;
+static constexpr int SETTINGS_FORMAT = 5;
 
 void PairLatticeBond::write_restart_settings(FILE *fp)
 {
@@ -584,6 +587,7 @@ void PairLatticeBond::write_restart_settings(FILE *fp)
   fwrite(&shear_frame, sizeof(int), 1, fp);
   hetero->write_restart(fp);
   fwrite(&diameter, sizeof(double), 1, fp);
+  hetero->write_restart_strength_factor(fp);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -620,6 +624,8 @@ void PairLatticeBond::read_restart_settings(FILE *fp)
     if (comm->me == 0) utils::sfread(FLERR, &diameter, sizeof(double), 1, fp, nullptr, error);
     MPI_Bcast(&diameter, 1, MPI_DOUBLE, 0, world);
   }
+  // format 5: the keyword strength_factor
+  hetero->read_restart_strength_factor(fp, word <= -5);
   MPI_Bcast(&tolerance, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&maxslot, 1, MPI_INT, 0, world);
   MPI_Bcast(&cut_user, 1, MPI_DOUBLE, 0, world);

@@ -1,7 +1,7 @@
-"""Heterogeneous rock in pair_style lattice/bond (keywords stiffness, grain, strength, seed,
-boundary_strength): each bond's stiffness is the mean of its particles' factors, its strength
-a uniform draw from a hash of the seed and the two atom IDs, times boundary_strength across
-grains. Checked against the requested distributions, by hand for a two-grain block, on 1 and
+"""Heterogeneous rock in pair_style lattice/bond (keywords stiffness, grain, strength,
+strength_factor, seed, boundary_strength): each bond's stiffness is the mean of its particles'
+factors, its strength a uniform draw from a hash of the seed and the two atom IDs, times the
+mean of its particles' strength factors, times boundary_strength across grains. Checked against the requested distributions, by hand for a two-grain block, on 1 and
 2 ranks, and through a restart file."""
 
 from __future__ import annotations
@@ -86,6 +86,34 @@ def test_two_grains_by_hand(lmp_instance):
     assert (g1 != g2).sum() >= 19  # one row of boundary bonds or more
 
 
+def test_strength_factor_by_hand(lmp_instance):
+    """Particle strength factors 1 (left grain) and 4 (right): a bond's breaking force and
+    Fs0 take the mean of its particles' factors, times boundary_strength 0.5 across the
+    grains (so 1, 4 and 1.25); the stiffness stays that of the stiffness factors."""
+    lmp = lmp_instance
+    lmp.commands_string(block_2d_deck("-2 24 -2 14", "0 20 0 10", coeffs=None))
+    lmp.commands_string(TWO_GRAINS)
+    lmp.commands_string("""
+fix             strong all property/atom d_str
+set             atom * d_str 1.0
+set             region right d_str 4.0
+""")
+    lmp.command("pair_style lattice/bond stiffness d_stiff grain i_grain strength_factor d_str")
+    lmp.command(f"pair_coeff * * {COEFFS}")
+    table = bond_table(lmp)
+    ids = lmp.numpy.extract_atom("id")
+    grain = lmp.numpy.extract_atom("i_grain")
+    grain_of = dict(zip(ids.tolist(), grain.tolist()))
+    g1 = np.array([grain_of[int(t)] for t in table[:, 0]])
+    g2 = np.array([grain_of[int(t)] for t in table[:, 1]])
+    stiffness = np.where(g1 == g2, np.where(g1 == 0, 1.0, 3.0), 2.0)
+    np.testing.assert_allclose(table[:, 2], KN * stiffness, rtol=1e-14)
+    strength = np.where(g1 == g2, np.where(g1 == 0, 1.0, 4.0), 0.5 * 0.5 * (1.0 + 4.0))
+    np.testing.assert_allclose(table[:, 3], KN * XB * strength, rtol=1e-14)
+    np.testing.assert_allclose(table[:, 4], FS0 * strength, rtol=1e-14)
+    assert (g1 != g2).sum() >= 19 and (g1 == 1).sum() > 100
+
+
 def run_block(pair_lines: list[str], properties: list[str] = ()) -> np.ndarray:
     """Positions after 300 steps of a small vibrating 2D block, in a LAMMPS instance of its
     own (one at a time: a site LAMMPS before July 2025 registers a plugin's styles only in
@@ -142,14 +170,27 @@ run             4000
 """
 
 
+# strength factors per grain as well: 1 + 0.6 cos(1.3 grain); a bond across the ranks'
+# boundary needs its ghost's factor
+STRENGTH_FACTORS = """fix             strong all property/atom d_str
+variable        gf atom 1.0+0.6*cos(v_gid*1.3)
+set             atom * d_str v_gf
+"""
+
+
 def read_bonds(path) -> np.ndarray:
     """The rows of a bond dump ordered by the bond's IDs (ranks write them in any order)."""
     rows = read_local_dump(path)[1]
     return rows[np.lexsort((rows[:, 1], rows[:, 0]))]
 
 
-def test_same_heterogeneous_model_and_breaking_on_one_and_two_ranks(tmp_path):
+@pytest.mark.parametrize("strength_factor", [False, True], ids=["grains", "strength_factor"])
+def test_same_heterogeneous_model_and_breaking_on_one_and_two_ranks(tmp_path, strength_factor):
     deck = HETERO_RUN.format(coeffs=COEFFS)
+    if strength_factor:
+        deck = deck.replace("pair_style      lattice/bond stiffness d_stiff",
+                            STRENGTH_FACTORS + "pair_style      lattice/bond strength_factor d_str "
+                            "stiffness d_stiff")
     runs = {}
     for np_ in (1, 2):
         result = run_deck(deck, tmp_path / f"np{np_}", np=np_)
@@ -161,11 +202,16 @@ def test_same_heterogeneous_model_and_breaking_on_one_and_two_ranks(tmp_path):
         np.testing.assert_array_equal(t1[column], t2[column])
     # every bond's parameters and state, exactly
     np.testing.assert_array_equal(b1, b2)
+    if strength_factor:  # the factors are in the model: more than the 5 x 5 grains' values
+        assert len(np.unique(np.round(b1[:, 4] / (KN * XB), 12))) > 1000
 
 
 def test_restart_keeps_the_heterogeneity(tmp_path):
     first = block_2d_deck("-2 24 -2 14", "0 20 0 10", coeffs=None) + TWO_GRAINS + f"""
-pair_style      lattice/bond stiffness d_stiff grain i_grain strength 0.8 1.2 seed 5 boundary_strength 0.3
+fix             strong all property/atom d_str
+set             atom * d_str 1.0
+set             region right d_str 2.5
+pair_style      lattice/bond stiffness d_stiff grain i_grain strength 0.8 1.2 seed 5 boundary_strength 0.3 strength_factor d_str
 pair_coeff      * * {COEFFS}
 compute         bl all lattice/bond/local id1 id2 kn fb
 dump            d all local 1 before.txt c_bl[*]
@@ -175,6 +221,7 @@ write_restart   model.restart
     second = """
 read_restart    model.restart
 fix             props all property/atom i_grain d_stiff
+fix             strong all property/atom d_str
 compute         bl all lattice/bond/local id1 id2 kn fb
 dump            d all local 1 after.txt c_bl[*]
 run             0
@@ -186,6 +233,9 @@ run             0
     before, after = read_bonds(tmp_path / "before.txt"), read_bonds(tmp_path / "after.txt")
     np.testing.assert_array_equal(before, after)
     assert len(np.unique(np.round(before[:, 3] / (KN * XB), 12))) > 100  # really heterogeneous
+    # the strength factors 2.5 of the right grain are in both (the restart kept the keyword)
+    right = before[:, 3] / (KN * XB) > 1.2 * 1.0001
+    assert right.sum() > 50
 
 
 @pytest.mark.parametrize("style, message", [
@@ -197,6 +247,10 @@ run             0
     ("strength 0.5 1.5 seed -4", r"seed -4 is out of range: need a positive integer"),
     ("boundary_strength 0.3", r"boundary_strength needs the keyword grain"),
     ("grain i_grain boundary_strength 0", r"boundary_strength 0 is out of range: need > 0"),
+    ("strength_factor str", r"strength_factor str: give a per-atom property of fix property/atom "
+                            r"as d_name \(a floating-point strength factor per particle\)"),
+    ("strength_factor d_nothere", r"per-atom property d_nothere does not exist"),
+    ("strength_factor i_grain", r"strength_factor i_grain: give a per-atom property"),
 ])
 def test_bad_heterogeneity_input_names_the_value(tmp_path, style, message):
     deck = block_2d_deck("-2 14 -2 14", "0 10 0 10", coeffs=None) + f"""
@@ -223,3 +277,18 @@ run             0
     result = run_deck(deck, tmp_path)
     assert result.returncode != 0
     assert "atom 7 has stiffness factor d_stiff = -2; need a finite value > 0" in result.output
+
+
+def test_non_positive_strength_factor_is_refused(tmp_path):
+    deck = block_2d_deck("-2 14 -2 14", "0 10 0 10", coeffs=None) + f"""
+fix             props all property/atom d_str
+set             atom * d_str 1.0
+set             atom 11 d_str 0.0
+pair_style      lattice/bond strength_factor d_str
+pair_coeff      * * {COEFFS}
+run             0
+"""
+    result = run_deck(deck, tmp_path)
+    assert result.returncode != 0
+    assert ("atom 11 has strength factor d_str = 0; need a finite value > 0 (it multiplies the "
+            "breaking force Kn*Xb and Fs0)") in result.output

@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 from bonded_lattice import runner
 from bonded_lattice.conversion import BondParameters
-from bonded_lattice.lattice import pairs_within, read_grains
+from bonded_lattice.io import read_local_dump
+from bonded_lattice.lattice import pairs_within, read_grain_strengths, read_grains
 from bonded_lattice.scene_study import fracture_summary
 from bonded_lattice.scenes import (Scene, bond_angles, box_lattice, break_sequence, break_steps,
                                    broken_bonds, build_model, central_spring_bond, plane_moduli,
@@ -76,6 +77,41 @@ def test_scene_checks_its_parameters():
         Scene("expanding", n_grains=3, n_expanding=3)
     with pytest.raises(ValueError, match="strength"):
         Scene("polycrystal", strength_min=1.2, strength_max=0.8)
+    with pytest.raises(ValueError, match="matrix_strength = 2.0 with kind = 'polycrystal'"):
+        Scene("polycrystal", matrix_strength=2.0)
+    with pytest.raises(ValueError, match="matrix_strength = 0.0 is out of range"):
+        Scene("layer-extension", matrix_strength=0.0)
+
+
+def test_matrix_strength_scales_the_matrix_bonds(tmp_path):
+    """matrix_strength 4: the data file gives the matrix's particles strength factor 4 and
+    the layer's 1; in LAMMPS a bond's breaking force is Kn Xb times its draw in [0.8, 1.2)
+    times the mean of its particles' factors: [0.8, 1.2) in the layer, [3.2, 4.8) in the
+    matrix, 2.5 x [0.8, 1.2) across the interfaces (boundary_strength 1)."""
+    scene = Scene("layer-extension", n_x=16, matrix_strength=4.0, n_steps=1)
+    model = build_model(scene)
+    info = write_scene(scene, tmp_path)
+    assert np.array_equal(read_grain_strengths(info["data"]),
+                          np.where(model.grain == 0, 4.0, 1.0))
+    deck = open(info["deck"]).read()
+    assert "boundary_strength 1.0 strength_factor d_strength" in deck
+    assert "property/atom i_grain d_stiffness d_strength ghost yes" in deck
+    # the model as the deck builds it, before the loading: every bond's breaking force
+    head = deck.split("# ---- quasi-static loading")[0] + (
+        "compute         fb all lattice/bond/local id1 id2 fb\n"
+        "dump            fbd all local 1 fb.txt c_fb[*]\n"
+        "run             0 post no\n")
+    (tmp_path / "in.fb").write_text(head)
+    res = runner.run_deck(tmp_path / "in.fb", tmp_path, progress=False)
+    assert res.returncode == 0, res.error
+    rows = read_local_dump(tmp_path / "fb.txt")[1]
+    g1, g2 = (model.grain[rows[:, k].astype(int) - 1] for k in (0, 1))
+    factor = rows[:, 2] / (scene.bond.Kn * scene.bond.Xb)
+    for mask, mean in ((g1 + g2 == 2, 1.0), (g1 + g2 == 0, 4.0), (g1 != g2, 2.5)):
+        assert mask.sum() > 20
+        # the draw's range [0.8, 1.2) times the mean factor, to round-off
+        assert factor[mask].min() >= 0.8 * mean * (1 - 1e-12)
+        assert factor[mask].max() < 1.2 * mean * (1 + 1e-12)
 
 
 @pytest.mark.parametrize("kind", ["layer-extension", "polycrystal", "expanding"])

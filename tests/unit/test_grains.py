@@ -31,7 +31,7 @@ from bonded_lattice.grains import (
     voronoi_grains,
     voronoi_seeds,
 )
-from bonded_lattice.lattice import hex_block_2d, read_grains, write_data
+from bonded_lattice.lattice import hex_block_2d, read_grain_strengths, read_grains, write_data
 
 D = 1.0e-3
 SQRT3 = math.sqrt(3.0)
@@ -471,6 +471,31 @@ def test_grains_section_round_trip(tmp_path):
     assert np.array_equal(s, stiffness)             # repr: exact round trip
     text = path.read_text()
     assert "\n\nGrains\n\n1 " in text
+    assert np.array_equal(read_grain_strengths(path), np.ones(lat.n))   # three columns: 1
+
+
+def test_grains_section_with_strength_factors(tmp_path):
+    lat = hex_block_2d(6, D)
+    grain = np.arange(lat.n) % 3
+    stiffness = 1.0 + 0.1 * grain
+    strength = 0.5 + 0.25 * grain
+    path = tmp_path / "data.lattice"
+    write_data(lat, path, 2.295e-3, grain=grain, stiffness=stiffness, strength=strength)
+    ids, g, s = read_grains(path)
+    assert np.array_equal(g, grain) and np.array_equal(s, stiffness)
+    assert np.array_equal(read_grain_strengths(path), strength)
+    with pytest.raises(ValueError, match="strength factor -1.0 \\(particle index 0\\)"):
+        write_data(lat, path, 2.295e-3, grain=grain, stiffness=stiffness,
+                   strength=-np.ones(lat.n))
+    with pytest.raises(ValueError, match="give grain and stiffness too"):
+        write_data(lat, path, 2.295e-3, strength=strength)
+    # a section whose lines mix three and four columns names the line
+    text = path.read_text().splitlines()
+    k = text.index("Grains") + 3
+    text[k] = " ".join(text[k].split()[:3])
+    path.write_text("\n".join(text) + "\n")
+    with pytest.raises(ValueError, match=f"line {k + 1}: .*as the section's first line"):
+        read_grains(path)
 
 
 def test_deck_grain_lines():

@@ -63,11 +63,14 @@ class PairStyle:
         """``read_data``, after the fix that takes the data file's Grains section."""
         if self.grains is None:
             return f"read_data       {data_file}\n"
-        return ("# grain id and stiffness factor per particle, from the data file's Grains "
+        what = ("grain id, stiffness and strength factors" if self.grains.particle_strength
+                else "grain id and stiffness factor")
+        return (f"# {what} per particle, from the data file's Grains "
                 "section\n# (the pair style sends the ghosts' values itself at every "
                 "reneighbouring; ghost yes,\n# which it does not need, keeps the fix's ghost "
                 "copies current for other commands)\n"
-                f"fix             {PROPERTY_FIX} all property/atom i_grain d_stiffness ghost yes\n"
+                f"fix             {PROPERTY_FIX} all property/atom {self.grains.properties()} "
+                "ghost yes\n"
                 f"read_data       {data_file} fix {PROPERTY_FIX} NULL Grains\n")
 
     def text(self) -> str:
@@ -77,7 +80,8 @@ class PairStyle:
         if g is not None:
             strength = (f"{g.strength_min:g}" if g.strength_min == g.strength_max
                         else f"uniform in [{g.strength_min:g}, {g.strength_max:g})")
+            mean = " x the mean of its particles' d_strength," if g.particle_strength else ""
             note = ("# heterogeneity: a bond's stiffness factor is the mean of its particles'; "
-                    f"its strength\n# factor is {strength}, x {g.boundary_strength:g} across "
-                    "grain boundaries\n")
+                    f"its strength\n# factor is {strength},{mean} x {g.boundary_strength:g} "
+                    "across grain boundaries\n")
         return f"{note}pair_style      lattice/bond{self.keywords()}\n{self.bond.pair_coeff()}\n"

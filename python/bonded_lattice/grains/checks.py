@@ -79,13 +79,13 @@ def check_grain_ids(grain: np.ndarray) -> np.ndarray:
     return g
 
 
-def check_stiffness_factors(stiffness: np.ndarray) -> np.ndarray:
-    """Per-particle stiffness factors: 0 < factor < inf."""
+def check_stiffness_factors(stiffness: np.ndarray, what: str = "stiffness") -> np.ndarray:
+    """Per-particle stiffness (or, with what="strength", strength) factors: 0 < factor < inf."""
     s = np.asarray(stiffness, dtype=float).reshape(-1)
     bad = ~(np.isfinite(s) & (s > 0))
     if bad.any():
         k = int(np.argmax(bad))
-        raise ValueError(f"stiffness factor {s[k]} (particle index {k}) is out of range: "
+        raise ValueError(f"{what} factor {s[k]} (particle index {k}) is out of range: "
                          "need 0 < factor < inf")
     return s
 

@@ -32,7 +32,10 @@ class GrainPairOptions:
         a hash of seed and the two atom tags: the same on any number of ranks);
     boundary_strength: extra factor for bonds whose particles are in different
         grains (the seed's models: 0.5);
-    seed: of the strength draws.
+    seed: of the strength draws;
+    particle_strength: the data file also gives each particle a strength factor
+        (``d_strength``, a bond takes the mean of its particles'; keyword
+        ``strength_factor``).
     The stiffness factors come from the data file (``d_stiffness``); the C++
     side defines the keywords (docs/pair_lattice_bond.rst).
     """
@@ -41,16 +44,24 @@ class GrainPairOptions:
     strength_max: float = 1.0
     seed: int = 1
     boundary_strength: float = 0.5
+    particle_strength: bool = False
 
     def __post_init__(self) -> None:
         check_strength(self.strength_min, self.strength_max, self.boundary_strength)
         check_seed(self.seed)
 
     def pair_style_args(self) -> str:
-        """``grain i_grain stiffness d_stiffness strength MIN MAX seed S boundary_strength F``."""
+        """``grain i_grain stiffness d_stiffness strength MIN MAX seed S boundary_strength F``
+        (and ``strength_factor d_strength``)."""
+        extra = " strength_factor d_strength" if self.particle_strength else ""
         return (f"grain i_grain stiffness d_stiffness strength {self.strength_min!r} "
                 f"{self.strength_max!r} seed {self.seed} "
-                f"boundary_strength {self.boundary_strength!r}")
+                f"boundary_strength {self.boundary_strength!r}{extra}")
+
+    def properties(self) -> str:
+        """The per-atom properties of the data file's Grains section, in its column order
+        (``fix property/atom``)."""
+        return "i_grain d_stiffness" + (" d_strength" if self.particle_strength else "")
 
 
 SOURCES = ("voronoi", "elle", "polygons", "layer")

@@ -13,7 +13,7 @@ The library, the benchmarks and the tests read these files through these functio
 """
 
 from .ave_time import read_ave_time
-from .data import GRAINS_SECTION, read_grains
+from .data import GRAINS_SECTION, read_grain_strengths, read_grains
 from .dump import (read_atom_dump, read_atom_frame, read_bond_dump, read_frames,
                    read_local_dump)
 from .table import read_table
@@ -21,5 +21,5 @@ from .thermo import Thermo, parse_thermo, read_thermo
 
 __all__ = ["GRAINS_SECTION", "Thermo", "parse_thermo", "read_atom_dump", "read_atom_frame",
            "read_ave_time",
-           "read_bond_dump", "read_frames", "read_grains", "read_local_dump", "read_table",
+           "read_bond_dump", "read_frames", "read_grain_strengths", "read_grains", "read_local_dump", "read_table",
            "read_thermo"]
