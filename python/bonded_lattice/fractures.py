@@ -20,7 +20,8 @@ The measures of the scenes (issue 20, point 4), each on the broken bonds (id1, i
 run, 1-based ids into the initial positions:
 
 - :func:`layer_fractures`: the fractures crossing a competent layer, their share of the
-  broken bonds and their spacing over the layer thickness;
+  broken bonds and their spacing over the layer thickness; and the field geologist's count,
+  the fractures met by a scanline along the layer's middle row;
 - :func:`intergranular_fraction`: the share of broken bonds joining two grains;
 - :func:`radial_fractures`: the fractures that start at growing grains and run outwards.
 """
@@ -201,6 +202,17 @@ def layer_fractures(pairs: np.ndarray, positions: np.ndarray, layer: np.ndarray,
     the circular mean of its midpoints' x, in [x0, x0 + L_x) with x0 the lowest particle x,
     and the n crossings lie on a ring of length L_x: the mean spacing is L_x / n, defined
     for one crossing too (the fracture and its periodic image).
+
+    The scanline count (``scanline_fractures``, ``scanline_x``,
+    ``scanline_spacing_to_thickness``) is the field's way of measuring spacing: the
+    fractures a line along the middle of the layer meets.  The line runs along the layer's
+    middle particle row (the row nearest the mid-thickness, the lower of two), where the
+    only crack faces it can cross are those of the row's own x-parallel bonds: every crack
+    that passes the row breaks one of them.  Broken bonds of that row that are neighbours
+    (d apart: a particle cut out) count once; each count's position is their mean x.  It
+    does not merge fractures that cross or touch elsewhere in the layer, which the
+    crossing count (one fracture per group of broken bonds) does.  The spacing is as for
+    the crossings (L_x / n in a periodic box; the mean gap otherwise).
     """
     pos = np.asarray(positions, dtype=float)
     d = _check_d(d)
@@ -225,14 +237,51 @@ def layer_fractures(pairs: np.ndarray, positions: np.ndarray, layer: np.ndarray,
             else:
                 xs.append(x0 + (_mean_x(mk[:, 0], float(box[0])) - x0) % float(box[0]))
     xs.sort()
-    if box is not None:
-        spacing = float(box[0]) / len(xs) / thickness if xs else None
-    else:
-        spacing = float(np.mean(np.diff(xs))) / thickness if len(xs) >= 2 else None
+    scan = _scanline(p[both], pos, inside, d, box)
     return {"fractures_in_layer": len(xs),
             "fraction_in_layer": float(both.mean()) if len(p) else None,
-            "spacing_to_thickness": spacing, "layer_thickness": thickness,
-            "layer_fracture_x": xs}
+            "spacing_to_thickness": _spacing(xs, box, thickness), "layer_thickness": thickness,
+            "layer_fracture_x": xs, "scanline_fractures": len(scan), "scanline_x": scan,
+            "scanline_spacing_to_thickness": _spacing(scan, box, thickness)}
+
+
+def _spacing(xs: list[float], box: np.ndarray | None, thickness: float) -> float | None:
+    """Mean spacing of sorted positions over the thickness: L_x / n in a periodic box, else
+    the mean gap (None with too few)."""
+    if box is not None:
+        return float(box[0]) / len(xs) / thickness if xs else None
+    return float(np.mean(np.diff(xs))) / thickness if len(xs) >= 2 else None
+
+
+def _scanline(pairs: np.ndarray, pos: np.ndarray, inside: np.ndarray, d: float,
+              box: np.ndarray | None) -> list[float]:
+    """Sorted x of the fractures the layer's middle row meets (:func:`layer_fractures`):
+    its broken x-parallel bonds, neighbours (d apart, across the seam too) counted once."""
+    rows = np.unique(np.round(pos[inside, 1] / (0.01 * d))) * (0.01 * d)   # rows' y, sorted
+    mid_y = 0.5 * (pos[inside, 1].min() + pos[inside, 1].max())
+    row_y = rows[np.argmin(np.abs(rows - mid_y) - 1e-9 * d * (rows < mid_y))]  # ties: the lower
+    tol = 0.1 * d      # the rows are sqrt3/2 d apart
+    a, b = pos[pairs[:, 0] - 1, :2], pos[pairs[:, 1] - 1, :2]
+    on_row = (np.abs(a[:, 1] - row_y) < tol) & (np.abs(b[:, 1] - row_y) < tol)
+    x = np.sort(bond_midpoints(pairs[on_row], pos, None if box is None else tuple(box))[:, 0])
+    if box is not None and len(x):
+        x0 = float(pos[:, 0].min())
+        x = np.sort(x0 + (x - x0) % float(box[0]))
+    if len(x) == 0:
+        return []
+    # runs of neighbours (gaps of d); in a periodic box the last run may continue the first
+    breaks = np.flatnonzero(np.diff(x) > LINK * d)
+    runs = np.split(x, breaks + 1)
+    if box is not None and len(runs) > 1 and x[0] + float(box[0]) - x[-1] <= LINK * d:
+        runs = [np.concatenate([runs[-1], runs[0] + float(box[0])])] + runs[1:-1]
+    out = []
+    for r in runs:
+        c = float(np.mean(r))
+        if box is not None:
+            x0 = float(pos[:, 0].min())
+            c = x0 + (c - x0) % float(box[0])
+        out.append(c)
+    return sorted(out)
 
 
 def radial_fractures(pairs: np.ndarray, positions: np.ndarray, growing: np.ndarray, d: float,

@@ -1,7 +1,7 @@
 """Fractures of constructed broken-bond sets with known answers (bonded_lattice.fractures).
 
 The lattice is the scenes' (``scenes.box_lattice``: rows along x at y = j sqrt3/2 d + d/2,
-particle i of row j at x = (i + 1/2 + (j mod 2)/2) d + d/2); cracks are made by breaking
+particle i of row j at x = (i + 1/2 + (j mod 2)/2) d); cracks are made by breaking
 every lattice bond that crosses a line segment.  Positions are exact multiples of d/2 and
 sqrt3/2 d, so the known answers hold to rounding (tolerances 1e-12 relative).
 """
@@ -116,6 +116,40 @@ def test_three_crossing_cracks_a_half_crack_and_their_spacing():
     # through crack (of its 2 x 24 - 1 = 47)
     assert len(half) == 5 and len(through) == 47
     assert out["fraction_in_layer"] == pytest.approx(49 / 85, rel=1e-12)
+    # the scanline along the middle row (rows 11 and 12 straddle the mid-thickness: the
+    # lower, row 11, particles at whole multiples of d) meets all five cracks, the half one
+    # too, each at the midpoint of the row bond it breaks: 8.5, 12.5, 16.5, 24.5, 32.5 d
+    assert out["scanline_fractures"] == 5
+    assert np.allclose(out["scanline_x"], np.array([8.5, 12.5, 16.5, 24.5, 32.5]) * D,
+                       rtol=1e-12)
+    assert out["scanline_spacing_to_thickness"] == pytest.approx(6.0 / (6 * ROW), rel=1e-12)
+
+
+def test_scanline_counts_branches_that_the_crossing_count_joins():
+    """A V: two cracks from one point at the layer's base, running up at +-(about) 60
+    degrees, are one fracture crossing the layer (their bonds touch) but the scanline meets
+    them twice; a particle cut out of the middle row (its two row bonds broken, d apart) is
+    met once."""
+    pos, bonds = lattice(40, 24)
+    layer = layer_mask(pos, 9, 6)
+    y0, y1 = row_y(8.75), row_y(14.25)
+    left = crossing(pos, bonds, (20.1 * D, y0), (20.1 * D - 3.2 * D, y1))
+    right = crossing(pos, bonds, (20.1 * D, y0), (20.1 * D + 3.2 * D, y1))
+    v = np.unique(np.vstack([left, right]), axis=0)
+    out = layer_fractures(v, pos, layer, D)
+    assert out["fractures_in_layer"] == 1
+    assert out["scanline_fractures"] == 2
+    # mid row 11 (y = row_y(11)): the V's arms there, 2.25 of the 5.5 rows up, lie
+    # 3.2 x 2.25 / 5.5 = 1.31 d either side of x = 20.1 d, in the row bonds between the
+    # particles at 18 and 19 d and at 21 and 22 d
+    assert np.allclose(out["scanline_x"], [18.5 * D, 21.5 * D], rtol=1e-12)
+    # a particle of row 11 (x = 30 d) cut out: its two row bonds, one count at 30 d
+    row11 = np.abs(pos[:, 1] - row_y(11)) < 1e-9 * D
+    k = int(np.flatnonzero(row11 & (np.abs(pos[:, 0] - 30 * D) < 1e-9 * D))[0]) + 1
+    cut = bonds[(bonds[:, 0] == k) | (bonds[:, 1] == k)]
+    both = layer_fractures(np.vstack([v, cut]), pos, layer, D)
+    assert both["scanline_fractures"] == 3
+    assert both["scanline_x"][2] == pytest.approx(30 * D, rel=1e-12)
 
 
 def test_crack_crossing_twice_through_the_matrix_is_two_crossings():

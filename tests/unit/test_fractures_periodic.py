@@ -68,6 +68,10 @@ def test_a_crack_on_the_seam_is_one_crossing_and_the_spacing_is_the_period_over_
     thickness = 6 * ROW * D
     assert out["spacing_to_thickness"] == pytest.approx(40 * D / 4 / thickness, rel=1e-12)
     assert out["fraction_in_layer"] == pytest.approx(1.0, rel=1e-12)
+    # the scanline meets the seam crack once, across the seam, and spaces the four by L_x / 4
+    assert out["scanline_fractures"] == 4
+    assert out["scanline_spacing_to_thickness"] == pytest.approx(40 * D / 4 / thickness,
+                                                                 rel=1e-12)
     # the seam crack's bonds are all across the seam: one fracture, midpoints within d/2
     # of the face by minimum image; without the period they lie in the middle of the box
     # (between the particles at x = d/2 or d and those at 39.5 d or 40 d), and the layer
