@@ -228,7 +228,9 @@ def _fracture_line(summary: dict) -> str:
     if "fractures_in_layer" in summary:
         return (f"fractures crossing the layer {summary['fractures_in_layer']}; broken bonds "
                 f"in the layer {num(summary['fraction_in_layer'])}; spacing / thickness "
-                f"{num(summary['spacing_to_thickness'])}")
+                f"{num(summary['spacing_to_thickness'])}; scanline along the layer's middle "
+                f"row {summary.get('scanline_fractures', 'undefined')} fractures, spacing / "
+                f"thickness {num(summary.get('scanline_spacing_to_thickness'))}")
     line = f"intergranular broken bonds {num(summary['intergranular_fraction'])}"
     if "radial_fractures" in summary:
         line += f"; radial fractures {summary['radial_fractures']}"
