@@ -142,15 +142,20 @@ void LatticeHeterogeneity::find()
     return index;
   };
   std::string bad;    // the first atom with a value out of range on this rank
-  if (!stiffness_name.empty()) {
-    stiffness_index = lookup(stiffness_name, 1);
-    stiffness_factor = atom->dvector[stiffness_index];
+  // a factor property: its index and array; the first atom whose value is not finite > 0
+  const auto factor = [&](const std::string &name, const char *what, const char *effect,
+                          int &index) -> double * {
+    index = lookup(name, 1);
+    double *value = atom->dvector[index];
     for (int i = 0; i < atom->nlocal && bad.empty(); i++)
-      if (!(stiffness_factor[i] > 0.0) || !std::isfinite(stiffness_factor[i]))
-        bad = fmt::format("pair_style lattice/bond: atom {} has stiffness factor d_{} = {}; need "
-                          "a finite value > 0 (it multiplies Kn and Ks)", atom->tag[i],
-                          stiffness_name, stiffness_factor[i]);
-  }
+      if (!(value[i] > 0.0) || !std::isfinite(value[i]))
+        bad = fmt::format("pair_style lattice/bond: atom {} has {} factor d_{} = {}; need a "
+                          "finite value > 0 (it multiplies {})", atom->tag[i], what, name,
+                          value[i], effect);
+    return value;
+  };
+  if (!stiffness_name.empty())
+    stiffness_factor = factor(stiffness_name, "stiffness", "Kn and Ks", stiffness_index);
   if (!grain_name.empty()) {
     grain_index = lookup(grain_name, 0);
     grain_id = atom->ivector[grain_index];
@@ -159,15 +164,9 @@ void LatticeHeterogeneity::find()
         bad = fmt::format("pair_style lattice/bond: atom {} has grain ID i_{} = {}; need >= 0",
                           atom->tag[i], grain_name, grain_id[i]);
   }
-  if (!strength_name.empty()) {
-    strength_index = lookup(strength_name, 1);
-    particle_strength = atom->dvector[strength_index];
-    for (int i = 0; i < atom->nlocal && bad.empty(); i++)
-      if (!(particle_strength[i] > 0.0) || !std::isfinite(particle_strength[i]))
-        bad = fmt::format("pair_style lattice/bond: atom {} has strength factor d_{} = {}; need "
-                          "a finite value > 0 (it multiplies the breaking force Kn*Xb and Fs0)",
-                          atom->tag[i], strength_name, particle_strength[i]);
-  }
+  if (!strength_name.empty())
+    particle_strength = factor(strength_name, "strength", "the breaking force Kn*Xb and Fs0",
+                               strength_index);
   // (every rank is here, at init: the message of any rank, printed by rank 0)
   lattice_error_from_any_rank(lmp, FLERR, !bad.empty(), bad);
 }

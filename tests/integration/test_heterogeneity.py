@@ -37,6 +37,13 @@ def bond_table(lmp) -> np.ndarray:
     return np.array(lmp.numpy.extract_compute("bl", LMP_STYLE_LOCAL, LMP_TYPE_ARRAY), copy=True)
 
 
+def bond_grains(lmp, table: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The grain IDs (i_grain) of the two particles of every row of a bond table."""
+    ids = lmp.numpy.extract_atom("id")
+    grain_of = dict(zip(ids.tolist(), lmp.numpy.extract_atom("i_grain").tolist()))
+    return tuple(np.array([grain_of[int(t)] for t in table[:, k]]) for k in (0, 1))
+
+
 def test_strength_is_uniform_between_min_and_max(lmp_instance):
     lmp = lmp_instance
     lmp.commands_string(block_2d_deck("-2 62 -2 62", "0 60 0 60", coeffs=None))
@@ -64,54 +71,35 @@ def test_strength_is_uniform_between_min_and_max(lmp_instance):
     assert abs(np.corrcoef(s[:-1], s[1:])[0, 1]) < 4 / np.sqrt(n)
 
 
-def test_two_grains_by_hand(lmp_instance):
+@pytest.mark.parametrize("factors", [None, (1.0, 4.0)], ids=["grains", "strength_factor"])
+def test_two_grains_by_hand(lmp_instance, factors):
     """Inside a grain its own stiffness, across the boundary the mean stiffness and half
-    the strength (the default boundary_strength)."""
+    the strength (the default boundary_strength).  With particle strength factors (1 in the
+    left grain, 4 in the right: keyword strength_factor) a bond's breaking force and Fs0
+    take the mean of its particles' factors too (so 1, 4 and 0.5 x 2.5 = 1.25); the
+    stiffness stays that of the stiffness factors."""
     lmp = lmp_instance
     lmp.commands_string(block_2d_deck("-2 24 -2 14", "0 20 0 10", coeffs=None))
     lmp.commands_string(TWO_GRAINS)
-    lmp.command("pair_style lattice/bond stiffness d_stiff grain i_grain")
+    keyword = ""
+    left, right = factors or (1.0, 1.0)
+    if factors:
+        lmp.commands_string(f"""
+fix             strong all property/atom d_str
+set             atom * d_str {left}
+set             region right d_str {right}
+""")
+        keyword = " strength_factor d_str"
+    lmp.command(f"pair_style lattice/bond stiffness d_stiff grain i_grain{keyword}")
     lmp.command(f"pair_coeff * * {COEFFS}")
     table = bond_table(lmp)
-    ids = lmp.numpy.extract_atom("id")
-    grain = lmp.numpy.extract_atom("i_grain")
-    grain_of = dict(zip(ids.tolist(), grain.tolist()))
-    g1 = np.array([grain_of[int(t)] for t in table[:, 0]])
-    g2 = np.array([grain_of[int(t)] for t in table[:, 1]])
+    g1, g2 = bond_grains(lmp, table)
     factor = np.where(g1 == g2, np.where(g1 == 0, 1.0, 3.0), 2.0)
     np.testing.assert_allclose(table[:, 2], KN * factor, rtol=1e-14)
-    strength = np.where(g1 == g2, 1.0, 0.5)
+    strength = np.where(g1 == g2, np.where(g1 == 0, left, right), 0.5 * 0.5 * (left + right))
     np.testing.assert_allclose(table[:, 3], KN * XB * strength, rtol=1e-14)
     np.testing.assert_allclose(table[:, 4], FS0 * strength, rtol=1e-14)
-    assert (g1 != g2).sum() >= 19  # one row of boundary bonds or more
-
-
-def test_strength_factor_by_hand(lmp_instance):
-    """Particle strength factors 1 (left grain) and 4 (right): a bond's breaking force and
-    Fs0 take the mean of its particles' factors, times boundary_strength 0.5 across the
-    grains (so 1, 4 and 1.25); the stiffness stays that of the stiffness factors."""
-    lmp = lmp_instance
-    lmp.commands_string(block_2d_deck("-2 24 -2 14", "0 20 0 10", coeffs=None))
-    lmp.commands_string(TWO_GRAINS)
-    lmp.commands_string("""
-fix             strong all property/atom d_str
-set             atom * d_str 1.0
-set             region right d_str 4.0
-""")
-    lmp.command("pair_style lattice/bond stiffness d_stiff grain i_grain strength_factor d_str")
-    lmp.command(f"pair_coeff * * {COEFFS}")
-    table = bond_table(lmp)
-    ids = lmp.numpy.extract_atom("id")
-    grain = lmp.numpy.extract_atom("i_grain")
-    grain_of = dict(zip(ids.tolist(), grain.tolist()))
-    g1 = np.array([grain_of[int(t)] for t in table[:, 0]])
-    g2 = np.array([grain_of[int(t)] for t in table[:, 1]])
-    stiffness = np.where(g1 == g2, np.where(g1 == 0, 1.0, 3.0), 2.0)
-    np.testing.assert_allclose(table[:, 2], KN * stiffness, rtol=1e-14)
-    strength = np.where(g1 == g2, np.where(g1 == 0, 1.0, 4.0), 0.5 * 0.5 * (1.0 + 4.0))
-    np.testing.assert_allclose(table[:, 3], KN * XB * strength, rtol=1e-14)
-    np.testing.assert_allclose(table[:, 4], FS0 * strength, rtol=1e-14)
-    assert (g1 != g2).sum() >= 19 and (g1 == 1).sum() > 100
+    assert (g1 != g2).sum() >= 19 and (g1 == 1).sum() > 100  # boundary bonds and a grain
 
 
 def run_block(pair_lines: list[str], properties: list[str] = ()) -> np.ndarray:
