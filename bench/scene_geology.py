@@ -12,11 +12,16 @@ on one rank and prints the tables of docs/scenes.md, "The geology, measured":
 4. expanding grains (walls held): the radial fractures against the growth;
 5. the extension runs of table 1 with one set-up choice changed, a matrix three times as
    strong as the layer (``--matrix-strength 3``), loaded twice as far (100 steps), relaxed by
-   relax direct: whether the fractures stay in the layer and their spacing saturates.
+   relax direct: whether the fractures stay in the layer and their spacing saturates;
+6. table 5's runs of contrast 10, seed 1, at 46,000 particles (200 per row, 230 rows): the
+   same box in mm, particles a third as wide, so a layer is 23 to 46 rows thick; whether the
+   spacing then follows the thickness.
 
     python bench/scene_geology.py --out scene-geology --img docs/img/scenes_layer_spacing.png
     python bench/scene_geology.py --out scene-geology --parts 5 \
         --img-strong docs/img/scenes_layer_spacing_strong_matrix.png
+    python bench/scene_geology.py --out scene-geology --parts 6 \
+        --img-fine docs/img/scenes_layer_spacing_fine.png
 
 Each run is the ``bonded-lattice scene`` command printed beside it (``--out`` its folder).
 """
@@ -50,6 +55,11 @@ BOUNDARY_STRENGTHS = (0.3, 0.5, 0.7, 1.0)
 #: table 5: the extension runs' command with a strong matrix, loaded to 2e-4
 STRONG_MATRIX = 3.0
 STRONG_STEPS = 100
+#: table 6: table 5's contrast-10 seed-1 runs with particles a third as wide (--n 200 --d
+#: 0.3e-3 keeps the box's 60 mm), bond dumps every 5 strain steps
+FINE = "--n 200 --d 0.0003 --np 1 --relax direct --boundary periodic"
+FINE_RUNS = ((10.0, 1),)
+FINE_DUMPS = 5
 EXPANDING = "expanding --n 60 --np 1 --relax local --grains 20 --expanding 3 --steps 30 " \
             "--strain-step 5e-5 --bond-dumps 1"
 
@@ -115,26 +125,29 @@ def extension(out: Path, reuse: bool) -> dict:
     return series
 
 
-def strong_matrix(out: Path, reuse: bool) -> dict:
+def strong_matrix(out: Path, reuse: bool, base: str = BASE.replace("local", "direct"),
+                  runs: tuple = EXTENSION_RUNS, dumps: int = 1, prefix: str = "strong") -> dict:
     """Table 5: table 1's runs with ``--matrix-strength 3``, loaded to 2e-4: the crossings and
     S/T at table 1's end (e = 1e-4) and at 2e-4, their most and the strain at which the count
-    last rose, and the layer's share of the breaks."""
+    last rose, and the layer's share of the breaks. Table 6: the same at another resolution
+    (``base``, ``runs``, bond dumps every ``dumps`` strain steps, folders ``prefix``-...)."""
     series = {}
     print(f"\n| contrast | seed | layer thickness (mm, rows) | first crossing at e | crossings, "
           f"S/T at e = 1e-4 | crossings, S/T at e = 2e-4 | most crossings (S/T) | count last "
           f"rose at e | scanline: count, S/T at e = 1e-4 | scanline at e = 2e-4 | "
           f"in the layer at the end | broken at the end | wall time (s) |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    for c, seed in EXTENSION_RUNS:
+    for c, seed in runs:
         for t in THICKNESSES:
             tag = f" --grain-seed {seed}" if seed != 1 else ""
             # relax direct: the same breaks as table 1's relax local (checked: 204 of 204 in
             # order for contrast 10, T 0.1), 30-90x faster
-            command = (EXTENSION.format(base=BASE.replace("local", "direct"), t=t, c=c, seed=tag)
+            command = (EXTENSION.format(base=base, t=t, c=c, seed=tag)
                        .replace("--steps 50", f"--steps {STRONG_STEPS}")
+                       .replace("--bond-dumps 1", f"--bond-dumps {dumps}")
                        + f" --matrix-strength {STRONG_MATRIX:g}")
-            scene, summary = run(command, f"strong-c{c:g}-t{t:g}" + (f"-s{seed}" if seed != 1
-                                                                   else ""), out, reuse)
+            scene, summary = run(command, f"{prefix}-c{c:g}-t{t:g}" + (f"-s{seed}" if seed != 1
+                                                                     else ""), out, reuse)
             along = fractures_along(scene, summary["folder"])
             series[(c, seed, t)] = along
             thick = along[0]["layer_thickness"]
@@ -206,7 +219,8 @@ def expanding(out: Path, reuse: bool) -> None:
     print(f"(wall time {summary['wall_time_s']} s)")
 
 
-def spacing_png(path: Path, series: dict, title: str = "") -> None:
+def spacing_png(path: Path, series: dict, title: str = "",
+                particles: str = "4200 particles") -> None:
     """Spacing over thickness against strain, one panel per contrast, one colour per
     thickness, one line style per seed, with the band 0.8-1.2 of Bai & Pollard (2000) at
     saturation."""
@@ -237,7 +251,7 @@ def spacing_png(path: Path, series: dict, title: str = "") -> None:
         ax.set_yscale("log")
         ax.set_title(f"stiffness contrast {c:g}", fontsize=9)
     axes[0][0].set_ylabel("mean fracture spacing / layer thickness, L_x / n / T")
-    fig.suptitle("competent layer, layer-parallel extension, periodic box, 4200 particles, "
+    fig.suptitle(f"competent layer, layer-parallel extension, periodic box, {particles}, "
                  f"quasi-static{title}", fontsize=9)
     handles, labels = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=7, frameon=False)
@@ -254,7 +268,10 @@ def main() -> None:
     ap.add_argument("--reuse", action="store_true", help="keep finished runs")
     ap.add_argument("--img-strong", default="", help="the spacing figure of table 5 (default "
                     "OUT/layer_spacing_strong_matrix.png)")
-    ap.add_argument("--parts", default="12345", help="which tables (default 12345)")
+    ap.add_argument("--img-fine", default="", help="the spacing figure of table 6 (default "
+                    "OUT/layer_spacing_fine.png)")
+    ap.add_argument("--parts", default="12345", help="which tables (default 12345; 6, the "
+                    "finer lattice, only when asked for)")
     args = ap.parse_args()
     out = Path(args.out)
     if "1" in args.parts:
@@ -275,6 +292,15 @@ def main() -> None:
                     else out / "layer_spacing_strong_matrix.png", series,
                     f", matrix {STRONG_MATRIX:g} x as strong as the layer")
         (out / "strong_matrix_along.json").write_text(json.dumps(
+            {f"contrast {c:g} seed {seed} thickness {t:g}": v
+             for (c, seed, t), v in series.items()}, indent=1))
+    if "6" in args.parts:
+        series = strong_matrix(out, args.reuse, base=FINE, runs=FINE_RUNS, dumps=FINE_DUMPS,
+                               prefix="fine")
+        spacing_png(Path(args.img_fine) if args.img_fine else out / "layer_spacing_fine.png",
+                    series, f", matrix {STRONG_MATRIX:g} x as strong as the layer",
+                    "46,000 particles")
+        (out / "fine_along.json").write_text(json.dumps(
             {f"contrast {c:g} seed {seed} thickness {t:g}": v
              for (c, seed, t), v in series.items()}, indent=1))
 
