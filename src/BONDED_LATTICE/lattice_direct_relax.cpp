@@ -58,6 +58,11 @@ static constexpr double SMOOTH_BUDGET = 0.25;
 // direction updates before a new factor, then a shorter step
 static constexpr double STEP_FRACTION = 0.05;
 static constexpr int STEP_ROUNDS = 2;
+// a Newton step that opens or closes a contact is halved until the springs'
+// energy falls by at least ARMIJO of what the step's slope promises, at most
+// STEP_HALVINGS times (then the shortest is taken)
+static constexpr double ARMIJO = 1.0e-4;
+static constexpr int STEP_HALVINGS = 40;
 
 namespace {
 // m x = rhs for the symmetric dim x dim block m (Cramer); false if singular
@@ -273,12 +278,20 @@ double LatticeDirectRelax::ratio(const Spring &s, BreakMode &mode) const
    free force component
 ------------------------------------------------------------------------- */
 
+// a spring's owner-to-partner vector d and length at u
+double LatticeDirectRelax::separation(const Spring &s, int dim, const std::vector<double> &u,
+                                      double d[3])
+{
+  for (int c = 0; c < 3; c++) d[c] = s.d[c];
+  for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+  return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
 // a spring's stretch and force on its owner (f, dim components) at u
 void LatticeDirectRelax::spring_force(Spring &s, int dim, const std::vector<double> &u) const
 {
-  double d[3] = {s.d[0], s.d[1], s.d[2]};
-  for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
-  const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  double d[3];
+  const double r = separation(s, dim, u, d);
   s.e = normal_stretch(r, s.touch);
   // on the owner along the owner-to-partner vector, tension positive; an open contact none
   const double scale = (!s.intact && contact_open(s.e)) ? 0.0 : normal_force(s.kn, s.e) / r;
@@ -303,6 +316,62 @@ double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
     largest = MAX(largest, std::fabs(f[q]));
   }
   return largest;
+}
+
+/* ----------------------------------------------------------------------
+   the springs' elastic energy at u (an intact bond at any stretch, a
+   broken one or a contact when closed: the energy whose gradient forces()
+   returns), and the length of a Newton step.  A step solved with the
+   contacts as they are can overshoot when it opens or closes one: a
+   loosely held particle pushed into a contact that the factor holds open
+   moves deep into it, and back out on the next step, for ever (seen in the
+   polycrystal at 184,800 particles).  The energy is convex in the
+   stretches, so such a step is halved until the energy falls enough
+   (Armijo); a step that changes no contact is Newton's, whole
+------------------------------------------------------------------------- */
+
+double LatticeDirectRelax::energy(const Network &net, const std::vector<double> &u) const
+{
+  double sum = 0.0;
+  for (const Spring &s : net.springs) {
+    double d[3];
+    const double e = normal_stretch(separation(s, net.dim, u, d), s.touch);
+    if (s.intact || !contact_open(e)) sum += normal_energy(s.kn, e);
+  }
+  return sum;
+}
+
+double LatticeDirectRelax::step_length(const Network &net, const std::vector<double> &u,
+                                       const std::vector<double> &f,
+                                       const std::vector<double> &step) const
+{
+  std::vector<double> trial(u.size());
+  auto move = [&](double alpha) {
+    for (size_t q = 0; q < u.size(); q++) trial[q] = net.free[q] ? u[q] + alpha * step[q] : u[q];
+  };
+  move(1.0);
+  bool flips = false;
+  for (const Spring &s : net.springs) {
+    if (s.intact) continue;
+    double d[3];
+    const double e = normal_stretch(separation(s, net.dim, trial, d), s.touch);
+    if (contact_open(e) != contact_open(s.e)) {
+      flips = true;
+      break;
+    }
+  }
+  if (!flips) return 1.0;
+  double slope = 0.0;    // -dE/dalpha at u along the step
+  for (size_t q = 0; q < u.size(); q++)
+    if (net.free[q]) slope += f[q] * step[q];
+  if (!(slope > 0.0)) return 1.0;
+  const double start = energy(net, u);
+  double alpha = 1.0;
+  for (int h = 0; h < STEP_HALVINGS; h++, alpha *= 0.5) {
+    if (h > 0) move(alpha);
+    if (energy(net, trial) <= start - ARMIJO * alpha * slope) return alpha;
+  }
+  return alpha;
 }
 
 /* ----------------------------------------------------------------------
@@ -528,7 +597,9 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
    directions brought up to date in the factor (an update and a downdate
    each) and the step is solved again; after STEP_ROUNDS such rounds the
    factor is made anew at the current directions, and a step still too long
-   is scaled down to max_step (the Newton steps go on from there)
+   is scaled down to max_step (the Newton steps go on from there).  A step
+   that opens or closes a contact is shortened until the energy falls
+   (step_length)
 ------------------------------------------------------------------------- */
 
 void LatticeDirectRelax::newton_step(Network &net, LatticeDirectState &state,
@@ -579,6 +650,9 @@ void LatticeDirectRelax::newton_step(Network &net, LatticeDirectState &state,
         out.changes += 2;
       }
   }
+  const double alpha = step_length(net, u, f, step);
+  if (alpha < 1.0)
+    for (double &v : step) v *= alpha;
   for (size_t q = 0; q < u.size(); q++)
     if (net.free[q]) u[q] += step[q];
 }

@@ -128,7 +128,12 @@ class LatticeDirectRelax : protected Pointers {
   void factorise(Network &net, LatticeDirectState &state, const std::vector<double> &u);
   // rank 0: stretches and free forces at u; returns the largest force component
   double forces(Network &net, const std::vector<double> &u, std::vector<double> &f) const;
+  static double separation(const Spring &s, int dim, const std::vector<double> &u, double d[3]);
   void spring_force(Spring &s, int dim, const std::vector<double> &u) const;
+  // rank 0: the springs' energy at u; the fraction of a Newton step to take
+  double energy(const Network &net, const std::vector<double> &u) const;
+  double step_length(const Network &net, const std::vector<double> &u,
+                     const std::vector<double> &f, const std::vector<double> &step) const;
   // rank 0: Gauss-Seidel moves of the particles whose force exceeds ftol, at most budget
   bool smooth(Network &net, std::vector<double> &u, std::vector<double> &f,
               bigint budget) const;

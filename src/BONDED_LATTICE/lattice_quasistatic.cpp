@@ -226,11 +226,19 @@ bigint LatticeQuasistatic::relax()
 /* ----------------------------------------------------------------------
    one input line; with quiet yes its output (echo, thermo, the minimiser's
    and the run's summaries) goes nowhere.  An error still stops the input and
-   is printed once the output streams are back
+   is printed once the output streams are back.  Its warnings do not count
+   against the limit of thermo_modify warn (100 by default): a run without
+   time integration warns once per relaxation, and after the limit LAMMPS
+   drops every warning, later ones of this command and of the input included
 ------------------------------------------------------------------------- */
 
 void LatticeQuasistatic::command_quietly(const std::string &line)
 {
+  struct KeepWarnings {
+    Error *error;
+    int numwarn;
+    ~KeepWarnings() { error->set_numwarn(numwarn); }
+  } keep{error, error->get_numwarn()};
   if (!quiet) {
     input->one(line);
     return;

