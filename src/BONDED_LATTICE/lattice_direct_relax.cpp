@@ -20,6 +20,7 @@
 #include "lattice_bond_geometry.h"
 #include "lattice_bond_physics.h"
 #include "lattice_relax_model.h"
+#include "neighbor.h"
 #include "pair_lattice_bond.h"
 
 #include <algorithm>
@@ -58,6 +59,17 @@ static constexpr double SMOOTH_BUDGET = 0.25;
 // direction updates before a new factor, then a shorter step
 static constexpr double STEP_FRACTION = 0.05;
 static constexpr int STEP_ROUNDS = 2;
+// a step longer than max_step but within STALE_STEP of it is a sound Newton
+// step of a region that moves far (a fragment swinging on its last bonds):
+// it is shortened at once.  Beyond, it is the factor's stale directions (a
+// particle with no stiffness across its springs but the shift moves by the
+// force over 1e-12 Kn: metres), which the rounds above correct
+static constexpr double STALE_STEP = 100.0;
+// a rank-one update or downdate costs this fraction of a solve (the largest
+// of bench/sparse_cholesky.py's ratios, 0.04 ms / 0.6 ms at 4200 nodes; 0.04
+// at 11,600 to 737,600): a round refreshes the far particles' springs only
+// while that costs less than a new factor
+static constexpr double MODIFY_IN_SOLVES = 0.07;
 // a Newton step that opens or closes a contact is halved until the springs'
 // energy falls by at least ARMIJO of what the step's slope promises, at most
 // STEP_HALVINGS times (then the shortest is taken)
@@ -113,7 +125,7 @@ static constexpr int RECORD_VALUES = 10;
 
 LatticeDirectRelax::LatticeDirectRelax(LAMMPS *lmp, PairLatticeBond *pair_in, double ftol_in,
                                        int threads_in) :
-    Pointers(lmp), pair(pair_in), ftol(ftol_in), threads(threads_in), max_step(0.0)
+    Pointers(lmp), pair(pair_in), ftol(ftol_in), threads(threads_in), max_step(0.0), max_travel(0.0)
 {
 }
 
@@ -433,7 +445,18 @@ bool LatticeDirectRelax::smooth(Network &net, std::vector<double> &u, std::vecto
     }
     double dx[3] = {0, 0, 0};
     if (!solve_small(m, rhs, dx, dim)) continue;
-    for (int c = 0; c < dim; c++) u[(size_t) a * dim + c] += SMOOTH_OMEGA * dx[c];
+    // a particle with almost no stiffness across its springs (on a straight chain)
+    // moves no further than a Newton step may, and a pass ends once one has gone
+    // half the skin (equilibrate)
+    double len = 0.0;
+    for (int c = 0; c < dim; c++) len += dx[c] * dx[c];
+    len = SMOOTH_OMEGA * std::sqrt(len);
+    const double scale = (len > max_step) ? max_step / len : 1.0;
+    double travel = 0.0;
+    for (int c = 0; c < dim; c++) {
+      u[(size_t) a * dim + c] += SMOOTH_OMEGA * dx[c] * scale;
+      travel += u[(size_t) a * dim + c] * u[(size_t) a * dim + c];
+    }
     moves++;
     for (int e = net.node_start[a]; e < net.node_start[a + 1]; e++) {
       Spring &s = net.springs[net.node_springs[e]];
@@ -450,6 +473,7 @@ bool LatticeDirectRelax::smooth(Network &net, std::vector<double> &u, std::vecto
           queue.push_back(b);
         }
     }
+    if (std::sqrt(travel) > max_travel) return false;
     if (head > 4096 && head * 2 > queue.size()) {
       queue.erase(queue.begin(), queue.begin() + (long) head);
       head = 0;
@@ -556,6 +580,16 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
   std::vector<double> f;
   bool smoothed = false;
   for (int step = 0; step <= NEWTON_MAX; step++) {
+    // the records and neighbour lists of the pass's force evaluation hold while no
+    // particle has moved more than half the skin: beyond, the pass ends and the next
+    // one's evaluation finds the new contacts (a fragment swinging on its last bonds)
+    double travel = 0.0;
+    for (size_t a = 0; a < net.tags.size(); a++) {
+      double sq = 0.0;
+      for (int c = 0; c < net.dim; c++) sq += u[a * net.dim + c] * u[a * net.dim + c];
+      travel = MAX(travel, sq);
+    }
+    if (std::sqrt(travel) > max_travel) return false;
     const double largest = forces(net, u, f);
     int changed = 0;
     for (size_t k = 0; k < net.springs.size(); k++) {
@@ -593,11 +627,15 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
    by springs in one line (a particle left on one bond, a chain) has no
    stiffness across them but the shift: a force across them that comes only
    from their turn since the factor was made would move it by that force over
-   the shift.  So a particle whose step exceeds max_step has its springs'
-   directions brought up to date in the factor (an update and a downdate
-   each) and the step is solved again; after STEP_ROUNDS such rounds the
-   factor is made anew at the current directions, and a step still too long
-   is scaled down to max_step (the Newton steps go on from there).  A step
+   the shift.  So a particle whose step exceeds STALE_STEP x max_step has its
+   springs' directions brought up to date in the factor (an update and a
+   downdate each; a new factor instead when those cost more) and the step is
+   solved again; after STEP_ROUNDS such rounds the factor is made anew at the
+   current directions.  A step still too long, or one within STALE_STEP of
+   max_step from the start (a region that really moves far: refreshing its
+   springs changes nothing, and cost a minute a step for a fragment of 1465
+   particles in the polycrystal at 184,800), is scaled down to max_step (the
+   Newton steps go on from there).  A step
    that opens or closes a contact is shortened until the energy falls
    (step_length)
 ------------------------------------------------------------------------- */
@@ -735,6 +773,7 @@ LatticeDirectRelax::Outcome LatticeDirectRelax::pass(bigint maxbreak, bool break
   Outcome out;
   // the radii are the pair style's of the force evaluation before the pass
   max_step = STEP_FRACTION * pair->smallest_radius();
+  max_travel = MAX(max_step, 0.5 * neighbor->skin);
   if (!(max_step > 0.0))
     error->all(FLERR, "lattice/quasistatic relax direct needs particles of positive radius (the "
                "smallest is {}): a Newton step may move a particle a twentieth of it",

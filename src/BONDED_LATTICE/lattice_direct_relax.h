@@ -99,6 +99,7 @@ class LatticeDirectRelax : protected Pointers {
   double ftol;
   int threads;    // of the factor's factorisations and solves
   double max_step;    // the longest move of a particle in one Newton step
+  double max_travel;  // the longest move of a particle in one pass (half the skin)
   std::vector<tagint> held_ids;    // probe_fixes: ID, bits of every particle holding some
 
   // the network on rank 0, in ID order
