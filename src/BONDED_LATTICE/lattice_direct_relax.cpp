@@ -59,18 +59,7 @@ static constexpr double SMOOTH_BUDGET = 0.25;
 // direction updates before a new factor, then a shorter step
 static constexpr double STEP_FRACTION = 0.05;
 static constexpr int STEP_ROUNDS = 2;
-// a step longer than max_step but within STALE_STEP of it is a sound Newton
-// step of a region that moves far (a fragment swinging on its last bonds):
-// it is shortened at once.  Beyond, it is the factor's stale directions (a
-// particle with no stiffness across its springs but the shift moves by the
-// force over 1e-12 Kn: metres), which the rounds above correct
-static constexpr double STALE_STEP = 100.0;
-// a rank-one update or downdate costs this fraction of a solve (the largest
-// of bench/sparse_cholesky.py's ratios, 0.04 ms / 0.6 ms at 4200 nodes; 0.04
-// at 11,600 to 737,600): a round refreshes the far particles' springs only
-// while that costs less than a new factor
-static constexpr double MODIFY_IN_SOLVES = 0.07;
-// a Newton step that opens or closes a contact is halved until the springs'
+// a Newton step is halved until the springs'
 // energy falls by at least ARMIJO of what the step's slope promises, at most
 // STEP_HALVINGS times (then the shortest is taken)
 static constexpr double ARMIJO = 1.0e-4;
@@ -331,24 +320,33 @@ double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
 }
 
 /* ----------------------------------------------------------------------
-   the springs' elastic energy at u (an intact bond at any stretch, a
-   broken one or a contact when closed: the energy whose gradient forces()
-   returns), and the length of a Newton step.  A step solved with the
-   contacts as they are can overshoot when it opens or closes one: a
-   loosely held particle pushed into a contact that the factor holds open
-   moves deep into it, and back out on the next step, for ever (seen in the
-   polycrystal at 184,800 particles).  The energy is convex in the
-   stretches, so such a step is halved until the energy falls enough
-   (Armijo); a step that changes no contact is Newton's, whole
+   the change of the springs' elastic energy between two displacements (an
+   intact bond at any stretch, a broken one or a contact when closed: the
+   energy whose gradient forces() returns), and the length of a Newton step:
+   halved until the energy falls by at least ARMIJO of what the step's slope
+   promises.  The factor holds each spring's material stiffness only, Kn n
+   n^T, not the stiffness its tension gives across it (T / r): a particle on
+   a kinked chain in tension, whose stiffness across the chain is mostly
+   that, overshoots the straight line by far and swings to and fro (three
+   particles, a kink of 1e-6 m: 100 passes, 7500 solves, left 95 N out of
+   equilibrium); a particle pulled across a straight chain into a contact
+   swings into the contact and out (polycrystal at 184,800 particles).  The
+   energy is convex in the stretches and falls along a Newton step, so the
+   halved step converges; a whole step that lowers the energy is taken whole
 ------------------------------------------------------------------------- */
 
-double LatticeDirectRelax::energy(const Network &net, const std::vector<double> &u) const
+double LatticeDirectRelax::energy_change(const Network &net, const std::vector<double> &from,
+                                         const std::vector<double> &to) const
 {
+  // spring by spring, (a - b)(a + b): no cancellation between two large sums
   double sum = 0.0;
   for (const Spring &s : net.springs) {
     double d[3];
-    const double e = normal_stretch(separation(s, net.dim, u, d), s.touch);
-    if (s.intact || !contact_open(e)) sum += normal_energy(s.kn, e);
+    const double e1 = normal_stretch(separation(s, net.dim, to, d), s.touch);
+    const double e0 = normal_stretch(separation(s, net.dim, from, d), s.touch);
+    const double a = (s.intact || !contact_open(e1)) ? e1 : 0.0;
+    const double b = (s.intact || !contact_open(e0)) ? e0 : 0.0;
+    sum += 0.5 * s.kn * (a - b) * (a + b);
   }
   return sum;
 }
@@ -357,31 +355,15 @@ double LatticeDirectRelax::step_length(const Network &net, const std::vector<dou
                                        const std::vector<double> &f,
                                        const std::vector<double> &step) const
 {
-  std::vector<double> trial(u.size());
-  auto move = [&](double alpha) {
-    for (size_t q = 0; q < u.size(); q++) trial[q] = net.free[q] ? u[q] + alpha * step[q] : u[q];
-  };
-  move(1.0);
-  bool flips = false;
-  for (const Spring &s : net.springs) {
-    if (s.intact) continue;
-    double d[3];
-    const double e = normal_stretch(separation(s, net.dim, trial, d), s.touch);
-    if (contact_open(e) != contact_open(s.e)) {
-      flips = true;
-      break;
-    }
-  }
-  if (!flips) return 1.0;
   double slope = 0.0;    // -dE/dalpha at u along the step
   for (size_t q = 0; q < u.size(); q++)
     if (net.free[q]) slope += f[q] * step[q];
   if (!(slope > 0.0)) return 1.0;
-  const double start = energy(net, u);
+  std::vector<double> trial(u.size());
   double alpha = 1.0;
   for (int h = 0; h < STEP_HALVINGS; h++, alpha *= 0.5) {
-    if (h > 0) move(alpha);
-    if (energy(net, trial) <= start - ARMIJO * alpha * slope) return alpha;
+    for (size_t q = 0; q < u.size(); q++) trial[q] = net.free[q] ? u[q] + alpha * step[q] : u[q];
+    if (energy_change(net, u, trial) <= -ARMIJO * alpha * slope) return alpha;
   }
   return alpha;
 }
@@ -627,17 +609,12 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
    by springs in one line (a particle left on one bond, a chain) has no
    stiffness across them but the shift: a force across them that comes only
    from their turn since the factor was made would move it by that force over
-   the shift.  So a particle whose step exceeds STALE_STEP x max_step has its
-   springs' directions brought up to date in the factor (an update and a
-   downdate each; a new factor instead when those cost more) and the step is
-   solved again; after STEP_ROUNDS such rounds the factor is made anew at the
-   current directions.  A step still too long, or one within STALE_STEP of
-   max_step from the start (a region that really moves far: refreshing its
-   springs changes nothing, and cost a minute a step for a fragment of 1465
-   particles in the polycrystal at 184,800), is scaled down to max_step (the
-   Newton steps go on from there).  A step
-   that opens or closes a contact is shortened until the energy falls
-   (step_length)
+   the shift.  So a particle whose step exceeds max_step has its springs'
+   directions brought up to date in the factor (an update and a downdate
+   each) and the step is solved again; after STEP_ROUNDS such rounds the
+   factor is made anew at the current directions, and a step still too long
+   is scaled down to max_step (the Newton steps go on from there).  The step
+   is then shortened until the energy falls (step_length)
 ------------------------------------------------------------------------- */
 
 void LatticeDirectRelax::newton_step(Network &net, LatticeDirectState &state,

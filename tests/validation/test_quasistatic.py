@@ -487,3 +487,36 @@ run             0
     after = log.split("USER RUN", 1)[1]
     assert "No fixes with time integration" in after, after
     assert "Too many warnings" not in log
+
+
+@pytest.mark.parametrize("kink", [1.0e-7, 1.0e-6])
+def test_relax_direct_straightens_a_kinked_chain_in_tension(lmp_instance, kink):
+    """Three particles A-P-B, A and B held 2 sqrt((D + 1.5 X0)^2 - kink^2) apart, P moved
+    ``kink`` across the line: both bonds stretched by 1.5 X0, in tension. The equilibrium is
+    P on the line (the bonds still in tension there, so it is stable). Across the chain P's
+    stiffness is mostly its tension's, 2 T / D, which the factor (Kn n n^T only) lacks: the
+    whole Newton step overshoots the line by far (e.g. 1.5e-4 m for a kink of 1e-6) and P
+    swung to and fro for 100 passes, ending 3.7e-6 m off the line with 95 N on it. The
+    energy-decreasing step length brings it onto the line."""
+    lmp = lmp_instance
+    ftol = 1.0e-2
+    half = np.sqrt((D + 1.5 * X0) ** 2 - kink ** 2)
+    lmp.commands_string(opening(box=CHAIN_BOX, types=2)
+                        + atoms_at([(0, 0), (2 * half, 0), (half, kink)], types=[2, 2, 1])
+                        + sphere_props()
+                        + pair_lines(coeffs(QUARTZ[2], Ks=0, Xb=10 * X0, Fs0=1.0e6, mu_p=0.0))
+                        + f"""\
+neighbor        1.0e-4 bin
+group           held type 2
+fix             hold held setforce 0 0 0
+run             0
+lattice/quasistatic ftol {ftol} relax direct
+run             0
+""")
+    ids = list(lmp.numpy.extract_atom("id"))
+    p = lmp.numpy.extract_atom("x")[ids.index(3)]
+    f = lmp.numpy.extract_atom("f")[ids.index(3)]
+    assert np.abs(f[:2]).max() <= ftol
+    # on the line to ftol over the stiffness across it, 2 T / half (T = Kn 1.5 X0 there)
+    tension = KN * (half - D)
+    assert abs(p[1]) <= ftol / (2 * tension / half)
