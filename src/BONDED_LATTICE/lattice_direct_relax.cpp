@@ -320,7 +320,8 @@ double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
 }
 
 /* ----------------------------------------------------------------------
-   the change of the springs' elastic energy between two displacements (an
+   the change of the springs' elastic energy from the last force evaluation
+   (the stretches it left in the springs) to other displacements (an
    intact bond at any stretch, a broken one or a contact when closed: the
    energy whose gradient forces() returns), and the length of a Newton step:
    halved until the energy falls by at least ARMIJO of what the step's slope
@@ -335,17 +336,16 @@ double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
    halved step converges; a whole step that lowers the energy is taken whole
 ------------------------------------------------------------------------- */
 
-double LatticeDirectRelax::energy_change(const Network &net, const std::vector<double> &from,
-                                         const std::vector<double> &to) const
+double LatticeDirectRelax::energy_change(const Network &net, const std::vector<double> &to) const
 {
-  // spring by spring, (a - b)(a + b): no cancellation between two large sums
+  // spring by spring, (a - b)(a + b): no cancellation between two large sums; the
+  // stretches at the start are those of the last force evaluation (s.e)
   double sum = 0.0;
   for (const Spring &s : net.springs) {
     double d[3];
     const double e1 = normal_stretch(separation(s, net.dim, to, d), s.touch);
-    const double e0 = normal_stretch(separation(s, net.dim, from, d), s.touch);
     const double a = (s.intact || !contact_open(e1)) ? e1 : 0.0;
-    const double b = (s.intact || !contact_open(e0)) ? e0 : 0.0;
+    const double b = (s.intact || !contact_open(s.e)) ? s.e : 0.0;
     sum += 0.5 * s.kn * (a - b) * (a + b);
   }
   return sum;
@@ -363,7 +363,7 @@ double LatticeDirectRelax::step_length(const Network &net, const std::vector<dou
   double alpha = 1.0;
   for (int h = 0; h < STEP_HALVINGS; h++, alpha *= 0.5) {
     for (size_t q = 0; q < u.size(); q++) trial[q] = net.free[q] ? u[q] + alpha * step[q] : u[q];
-    if (energy_change(net, u, trial) <= -ARMIJO * alpha * slope) return alpha;
+    if (energy_change(net, trial) <= -ARMIJO * alpha * slope) return alpha;
   }
   return alpha;
 }

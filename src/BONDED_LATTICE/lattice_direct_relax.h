@@ -131,9 +131,9 @@ class LatticeDirectRelax : protected Pointers {
   double forces(Network &net, const std::vector<double> &u, std::vector<double> &f) const;
   static double separation(const Spring &s, int dim, const std::vector<double> &u, double d[3]);
   void spring_force(Spring &s, int dim, const std::vector<double> &u) const;
-  // rank 0: the springs' energy at `to` minus at `from`; the fraction of a Newton step to take
-  double energy_change(const Network &net, const std::vector<double> &from,
-                       const std::vector<double> &to) const;
+  // rank 0: the springs' energy at `to` minus at the last force evaluation (their e);
+  // the fraction of a Newton step from there to take
+  double energy_change(const Network &net, const std::vector<double> &to) const;
   double step_length(const Network &net, const std::vector<double> &u,
                      const std::vector<double> &f, const std::vector<double> &step) const;
   // rank 0: Gauss-Seidel moves of the particles whose force exceeds ftol, at most budget
