@@ -328,6 +328,17 @@ LB_PHYSICS_INLINE double planar_spring_energy(double ks, double s)
   return 0.5 * ks * s * s;
 }
 
+// the change of a central spring's energy when its stretch goes from xn0 to
+// xn1: an intact bond both ways, a broken bond or contact only while closed;
+// as (a - b)(a + b), so that summed over many springs no two large sums
+// cancel (the relaxations' line searches, lattice/quasistatic)
+inline double central_energy_change(double kn, bool intact, double xn0, double xn1)
+{
+  const double a = (intact || !contact_open(xn1)) ? xn1 : 0.0;
+  const double b = (intact || !contact_open(xn0)) ? xn0 : 0.0;
+  return 0.5 * kn * (a - b) * (a + b);
+}
+
 // a record (or a wall contact) at stretch xn with a spring of squared length
 // s2: Kn xn^2 / 2 + Ks |S|^2 / 2 (compute lattice/energy, element 1)
 inline double record_energy(double kn, double xn, double ks, double s2)

@@ -338,15 +338,13 @@ double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
 
 double LatticeDirectRelax::energy_change(const Network &net, const std::vector<double> &to) const
 {
-  // spring by spring, (a - b)(a + b): no cancellation between two large sums; the
-  // stretches at the start are those of the last force evaluation (s.e)
+  // spring by spring: no cancellation between two large sums; the stretches at the
+  // start are those of the last force evaluation (s.e)
   double sum = 0.0;
   for (const Spring &s : net.springs) {
     double d[3];
     const double e1 = normal_stretch(separation(s, net.dim, to, d), s.touch);
-    const double a = (s.intact || !contact_open(e1)) ? e1 : 0.0;
-    const double b = (s.intact || !contact_open(s.e)) ? s.e : 0.0;
-    sum += 0.5 * s.kn * (a - b) * (a + b);
+    sum += central_energy_change(s.kn, s.intact, s.e, e1);
   }
   return sum;
 }

@@ -174,8 +174,12 @@ void LatticeLocalRelax::build_springs()
   exchange_forces();
   queue.clear();
 
-  // D = sum of Kn n n^T over every record (intact, broken or contact: an
-  // upper bound of the particle's stiffness, so each move lowers the energy)
+  // D = sum over every record (intact, broken or contact) of Kn n n^T, plus
+  // for an intact bond in tension the stiffness its tension gives across it,
+  // Kn Xn / r (I - n n^T): an upper bound of the particle's stiffness (a
+  // compressed spring's term across is negative), so each move lowers the
+  // energy.  Without the tension's part a particle on a kinked chain in
+  // tension has almost no stiffness across it and was sent out of the box
   double **x = atom->x;
   stiff.assign(6 * (size_t) nlocal, 0.0);
   std::vector<double> ghost_stiff(6 * (size_t) (nall - nlocal), 0.0);
@@ -184,9 +188,14 @@ void LatticeLocalRelax::build_springs()
     const double n[3] = {d.dx, d.dy, d.dz};
     const double inv = 1.0 / d.rsq;
     const double b[6] = {n[0] * n[0], n[1] * n[1], n[2] * n[2], n[0] * n[1], n[0] * n[2], n[1] * n[2]};
+    const double r = std::sqrt(d.rsq);
+    const double xn = normal_stretch(r, s.touch);
+    const double across = (s.intact && xn > 0.0) ? s.kn * xn / r : 0.0;
+    const double g[6] = {1.0 - b[0] * inv, 1.0 - b[1] * inv, 1.0 - b[2] * inv, -b[3] * inv,
+                         -b[4] * inv, -b[5] * inv};
     for (const int a : {s.i, s.j}) {
       double *out = (a < nlocal) ? &stiff[6 * (size_t) a] : &ghost_stiff[6 * (size_t) (a - nlocal)];
-      for (int c = 0; c < 6; c++) out[c] += s.kn * b[c] * inv;
+      for (int c = 0; c < 6; c++) out[c] += s.kn * b[c] * inv + across * g[c];
     }
   }
   comm_mode = Comm::STIFF;
@@ -405,9 +414,18 @@ void LatticeLocalRelax::move(int a)
   displace(a, dx, 3);
 }
 
-// particle a moves by dx (its first n components)
-void LatticeLocalRelax::displace(int a, const double *dx, int n)
+// particle a moves by dx (its first n components), by no more than the pass's
+// budget: a longer move could pass into a contact the pass does not know of
+// (its particles not touching when the pass began), and the next pass would
+// push the particle back out as far
+void LatticeLocalRelax::displace(int a, const double *dx_in, int n)
 {
+  double len = 0.0;
+  for (int c = 0; c < n; c++) len += dx_in[c] * dx_in[c];
+  len = std::sqrt(len);
+  const double scale = (len > budget) ? budget / len : 1.0;
+  double dx[3] = {0.0, 0.0, 0.0};
+  for (int c = 0; c < n; c++) dx[c] = dx_in[c] * scale;
   double **x = atom->x;
   for (int c = 0; c < n; c++) {
     disp[3 * (size_t) a + c] += dx[c];

@@ -6,7 +6,9 @@
 
    Only particles whose largest free force component exceeds the tolerance
    are moved, each by omega times the Newton step of its own springs
-   (x += omega D^-1 f, D = sum of Kn n n^T over its records); a move puts
+   (x += omega D^-1 f, D = sum of Kn n n^T over its records plus Kn Xn / r
+   (I - n n^T) over its intact bonds in tension), no further than the pass's
+   displacement budget; a move puts
    the particle's neighbours on the queue.  A broken spring therefore costs
    work in the region whose forces it changes by more than the tolerance,
    not in the whole box.  The particles are coloured (Jones-Plassmann, by a

