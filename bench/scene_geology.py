@@ -15,13 +15,17 @@ on one rank and prints the tables of docs/scenes.md, "The geology, measured":
    relax direct: whether the fractures stay in the layer and their spacing saturates;
 6. table 5's runs of contrast 10, seed 1, at 46,000 particles (200 per row, 230 rows): the
    same box in mm, particles a third as wide, so a layer is 23 to 46 rows thick; whether the
-   spacing then follows the thickness.
+   spacing then follows the thickness;
+7. the polycrystal of table 3 (boundary strength 0.5) with the set-up choices of the
+   184,800-particle run of docs/scenes.md changed one at a time (12 grains, walls, 30 steps of
+   2e-5), then all three: the intergranular share at e_xx = 2e-4 and at the end.
 
     python bench/scene_geology.py --out scene-geology --img docs/img/scenes_layer_spacing.png
     python bench/scene_geology.py --out scene-geology --parts 5 \
         --img-strong docs/img/scenes_layer_spacing_strong_matrix.png
     python bench/scene_geology.py --out scene-geology --parts 6 \
         --img-fine docs/img/scenes_layer_spacing_fine.png
+    python bench/scene_geology.py --out scene-geology --parts 7
 
 Each run is the ``bonded-lattice scene`` command printed beside it (``--out`` its folder).
 """
@@ -38,7 +42,9 @@ from bonded_lattice.cli import scene_from_args
 from bonded_lattice.cli_options import running_options, scene_options
 from bonded_lattice.fractures import intergranular_fraction
 from bonded_lattice.scene_study import SceneStudy, fractures_along
-from bonded_lattice.scenes import Scene, bond_angles, broken_bonds, build_model, lattice_bond_ids
+from bonded_lattice.scene_analysis import break_sequence
+from bonded_lattice.scenes import (Scene, bond_angles, broken_bonds, build_model, lattice_bond_ids,
+                                   read_scene_dat)
 
 BASE = "--n 60 --np 1 --relax local --boundary periodic"
 THICKNESSES = (0.1, 0.15, 0.2)
@@ -60,6 +66,18 @@ STRONG_STEPS = 100
 FINE = "--n 200 --d 0.0003 --np 1 --relax direct --boundary periodic"
 FINE_RUNS = ((10.0, 1),)
 FINE_DUMPS = 5
+#: table 7: table 3's polycrystal at boundary strength 0.5 (relax direct, which breaks the
+#: same bonds as relax local there), and each set-up choice of the medium run on its own
+SETUP_BASE = "polycrystal --n 60 --np 1 --relax direct --boundary-strength 0.5"
+SETUP_CHOICES = (
+    ("table 3 (30 grains, periodic box, 40 steps of 5e-6)",
+     "--boundary periodic --grains 30 --steps 40 --strain-step 5e-6"),
+    ("12 grains", "--boundary periodic --grains 12 --steps 40 --strain-step 5e-6"),
+    ("walls", "--boundary walls --grains 30 --steps 40 --strain-step 5e-6"),
+    ("30 steps of 2e-5 (to 6e-4)", "--boundary periodic --grains 30 --steps 30 --strain-step 2e-5"),
+    ("all three (the medium run's choices)", "--boundary walls --grains 12 --steps 30 "
+     "--strain-step 2e-5"))
+SETUP_STRAIN = 2.0e-4
 EXPANDING = "expanding --n 60 --np 1 --relax local --grains 20 --expanding 3 --steps 30 " \
             "--strain-step 5e-5 --bond-dumps 1"
 
@@ -205,6 +223,32 @@ def polycrystal(out: Path, reuse: bool) -> None:
               f"{summary['peak_at_strain']:.3g} | {summary['wall_time_s']} |")
 
 
+def share_at(run_dir: str | Path, grain: np.ndarray, strain: float) -> tuple[int, float | None]:
+    """Broken bonds and their intergranular share at the strain step closest to ``strain``
+    (e_xx): the first breaks of breaks.txt, as many as scene.dat counts broken there."""
+    dat = read_scene_dat(Path(run_dir) / "scene.dat")
+    k = int(np.argmin(np.abs(dat["exx"] - strain)))
+    n = int(dat["tension"][k] + dat["shear"][k])
+    return n, intergranular_fraction(break_sequence(run_dir, "log")[:n], grain)
+
+
+def setup_choices(out: Path, reuse: bool) -> None:
+    """Table 7: the polycrystal's intergranular share with one set-up choice changed at a
+    time."""
+    print(f"\n| set-up | broken at e_xx = {SETUP_STRAIN:g} | intergranular share there | "
+          "broken at the end | intergranular share at the end | share of all bonds on grain "
+          "boundaries | wall time (s) |")
+    print("|---|---|---|---|---|---|---|")
+    for k, (label, choice) in enumerate(SETUP_CHOICES):
+        scene, summary = run(f"{SETUP_BASE} {choice}", f"setup-{k}", out, reuse)
+        model = build_model(scene)
+        every = intergranular_fraction(lattice_bond_ids(model.lattice, True), model.grain)
+        n, share = share_at(summary["folder"], model.grain, SETUP_STRAIN)
+        print(f"| {label} | {n} | {fmt(share)} | {summary['broken']} | "
+              f"{fmt(summary['intergranular_fraction'])} | {every:.3f} | "
+              f"{summary['wall_time_s']} |")
+
+
 def expanding(out: Path, reuse: bool) -> None:
     """Table 4: radial fractures against the growth."""
     scene, summary = run(EXPANDING, "expanding", out, reuse)
@@ -271,7 +315,8 @@ def main() -> None:
     ap.add_argument("--img-fine", default="", help="the spacing figure of table 6 (default "
                     "OUT/layer_spacing_fine.png)")
     ap.add_argument("--parts", default="12345", help="which tables (default 12345; 6, the "
-                    "finer lattice, only when asked for)")
+                    "finer lattice, and 7, the polycrystal's set-up choices, only when asked "
+                    "for)")
     args = ap.parse_args()
     out = Path(args.out)
     if "1" in args.parts:
@@ -294,6 +339,8 @@ def main() -> None:
         (out / "strong_matrix_along.json").write_text(json.dumps(
             {f"contrast {c:g} seed {seed} thickness {t:g}": v
              for (c, seed, t), v in series.items()}, indent=1))
+    if "7" in args.parts:
+        setup_choices(out, args.reuse)
     if "6" in args.parts:
         series = strong_matrix(out, args.reuse, base=FINE, runs=FINE_RUNS, dumps=FINE_DUMPS,
                                prefix="fine")
