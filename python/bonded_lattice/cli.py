@@ -203,6 +203,7 @@ def scene_from_args(args: argparse.Namespace):
                  crossings=args.crossings,
                  damping=args.damping, output_every=args.output_every,
                  bond_dumps=args.bond_dumps, break_order=args.break_order,
+                 restart_every=args.restart,
                  dt_fraction=args.dt_fraction,
                  deformation=args.deformation, boundary=args.boundary,
                  atom_style=args.atom_style or ("sphere" if args.kind == "expanding" else "atomic"))
@@ -243,6 +244,8 @@ def cmd_scene(args: argparse.Namespace) -> int:
 
     scene = scene_from_args(args)
     out = Path(args.out)
+    if args.resume and not args.run:
+        raise SystemExit("bonded-lattice scene: --resume goes on with a run; add --run")
     if not args.run:
         info = write_scene(scene, out)
         print(f"wrote {info['data']} ({info['particles']} particles, "
@@ -255,7 +258,7 @@ def cmd_scene(args: argparse.Namespace) -> int:
             print(f"expanding grains: {info['expanding']}")
         print(f"run it with: cd {out} && mpirun -np 2 lmp -in {Path(info['deck']).name}")
         return 0
-    summary = run_scene(scene, out, np_=args.np, progress=not args.quiet)
+    summary = run_scene(scene, out, np_=args.np, progress=not args.quiet, resume=args.resume)
     o = summary["orientation"]
     orientation = (f"mean broken-bond orientation {o['mean']:.3g} deg from x"
                    if summary["broken"] else "no broken bond to orient")

@@ -285,6 +285,8 @@ SCENE_NUMBERS = {
                        "(0: only at the end)"),
         "break_order": ("--break-order", "quasi-static: dump the bond records after each of "
                         "the first this many breaks (break.<n>.txt: their exact order)"),
+        "restart_every": ("--restart", "quasi-static: write restart.scene every this many "
+                          "strain steps (0: never), for --resume"),
     },
 }
 
@@ -340,6 +342,9 @@ def scene_options(p: argparse.ArgumentParser) -> None:
     add(p, "atom_style", None, help="atomic (equal particles, per-type mass; default) or "
         "sphere (default and required for expanding, whose grains change their diameters)")
     p.add_argument("--run", action="store_true", help="run it, measure and plot")
+    p.add_argument("--resume", action="store_true", help="with --run: go on with the run in "
+                   "--out from its last restart file (written with --restart; give the same "
+                   "options as the first run)")
     add(p, "out", "scene")
 
 

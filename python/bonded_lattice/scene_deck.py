@@ -16,8 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .deck import (BOND_COUNTS, BOND_RECORDS, PairStyle, bond_counts, bond_records,
-                   integrator, opening, thermo, wall_rows)
+from .deck import (BOND_COUNTS, BOND_RECORDS, PROPERTY_FIX, PairStyle, bond_counts,
+                   bond_records, integrator, neighbours, opening, thermo, wall_rows)
 from .io.table import read_table
 from .lattice import write_data
 from .scene_definition import Scene
@@ -76,9 +76,21 @@ def scene_title(scene: Scene) -> str:
     return title
 
 
+RESTART_FILE = "restart.scene"
+# what a resumed deck needs besides the restart file: the box's initial lengths (the strains'
+# reference) and the last strain step the restart file holds
+RESTART_VARS = "restart.vars"
+RESTART_STEP = "restart.step"
+
+
 def deck_text(scene: Scene, model: SceneModel | None = None,
-              data_file: str = DATA_FILE) -> str:
-    """The LAMMPS deck of a scene (reads ``data_file``, written by :func:`write_scene`)."""
+              data_file: str = DATA_FILE, resume: bool = False) -> str:
+    """The LAMMPS deck of a scene (reads ``data_file``, written by :func:`write_scene`);
+    ``resume``: the deck that goes on from the last restart file of a quasi-static run with
+    ``restart_every`` (:func:`resume_deck`)."""
+    if resume and not (scene.mode == "quasistatic" and scene.restart_every):
+        raise ValueError("resume: only a quasi-static scene with restart_every > 0 writes the "
+                         "restart files a run can go on from")
     if model is None and scene.kind == "expanding":
         model = build_model(scene)
     b, d = scene.bond, scene.d
@@ -94,9 +106,10 @@ def deck_text(scene: Scene, model: SceneModel | None = None,
 # Central springs (the seed's): Kn {b.Kn:.6g} N/m, Ks 0, Xb {b.Xb:.6g} m, mu_p 0;
 # a broken spring only repels.  Breaking force Kn Xb = {fb:.6g} N.
 
-{opening(2, boundary, style, data_file, pair)}variable        d equal {d!r}
+{_resumed_opening(pair) if resume else opening(2, boundary, style, data_file, pair)}\
+variable        d equal {d!r}
 
-{_box_measures(scene)}{bond_counts()}{bond_records()}"""
+{_box_measures(scene, resume)}{bond_counts()}{bond_records()}"""
     grow = ""
     if scene.kind == "expanding":
         ids = " ".join(str(g) for g in model.expanding)
@@ -110,8 +123,20 @@ variable        d0 equal {d!r}
 """
     head += grow
     if qs:
-        return head + _quasistatic(scene, fb)
+        return head + _quasistatic(scene, fb, resume)
     return head + _dynamic(scene)
+
+
+def _resumed_opening(pair: PairStyle) -> str:
+    """The opening of a resumed deck: the restart file (box, atoms, groups, pair style and
+    coefficients, bond records), the grain data's fix declared again (its per-atom values
+    come back from the restart file at the first run) and the neighbour settings."""
+    fix = ""
+    if pair.grains is not None:
+        fix = (f"fix             {PROPERTY_FIX} all property/atom {pair.grains.properties()} "
+               "ghost yes\n")
+    return (f"# the state after the last strain step the restart file holds\n"
+            f"read_restart    {RESTART_FILE}\n{fix}{neighbours(pair.d)}")
 
 
 WALL_MEASURES = """# strains: the walls' distance against the initial one; stresses (tension
@@ -119,9 +144,7 @@ WALL_MEASURES = """# strains: the walls' distance against the initial one; stres
 # row's 2 n_x - 1 bonds to the row below carry (n_x - 1/2) d of the lattice;
 # sigma_xx: n_y rows of sqrt3/2 d (the 2 n_y - 1 bonds across a column make
 # an edge error of order 1/(3 n_y), docs/scenes.md)
-variable        Lx0 equal $(xcm(right,x)-xcm(left,x))
-variable        Ly0 equal $(xcm(top,y)-xcm(bottom,y))
-variable        exx equal (xcm(right,x)-xcm(left,x))/v_Lx0-1
+{lengths}variable        exx equal (xcm(right,x)-xcm(left,x))/v_Lx0-1
 variable        eyy equal (xcm(top,y)-xcm(bottom,y))/v_Ly0-1
 variable        sxx equal 0.5*(f_wleft[1]-f_wright[1])/(xcm(top,y)-xcm(bottom,y)+sqrt(3)/2*v_d)
 variable        syy equal 0.5*(f_wbottom[2]-f_wtop[2])/(xcm(right,x)-xcm(left,x)+0.5*v_d)
@@ -133,21 +156,39 @@ PERIODIC_MEASURES = """# ---- a box periodic in x and y: no walls; the lattice f
 # lx ly (LAMMPS' 2D volume): the 2D stress per unit thickness, in the wall
 # reactions' units (N/m per m of thickness)
 compute         press all pressure NULL virial
-variable        Lx0 equal $(lx)
-variable        Ly0 equal $(ly)
-variable        exx equal lx/v_Lx0-1
+{lengths}variable        exx equal lx/v_Lx0-1
 variable        eyy equal ly/v_Ly0-1
 variable        sxx equal -c_press[1]
 variable        syy equal -c_press[2]
 """
 
 
-def _box_measures(scene: Scene) -> str:
+def _box_measures(scene: Scene, resume: bool = False) -> str:
     """The boundary's groups and fixes and the strain and stress variables exx, eyy, sxx,
-    syy: the wall rows and their reactions, or the periodic box and its pressure tensor."""
+    syy: the wall rows and their reactions, or the periodic box and its pressure tensor.
+    ``resume``: the groups are the restart file's, the initial lengths its run's."""
+    if resume:
+        lengths = f"include         {RESTART_VARS}\n"
+    else:
+        measure = (("lx", "ly") if scene.boundary == "periodic"
+                   else ("xcm(right,x)-xcm(left,x)", "xcm(top,y)-xcm(bottom,y)"))
+        if scene.restart_every:
+            # the number's text is kept for a resumed run (restart.vars): LAMMPS' parser
+            # of a formula is not exact to the last bit, so the same text, not the value
+            # printed again, gives the same double
+            lengths = "".join(f"variable        {v}text string $({m})\n"
+                              f"variable        {v} equal ${{{v}text}}\n"
+                              for v, m in zip(("Lx0", "Ly0"), measure))
+        else:
+            lengths = "".join(f"variable        {v} equal $({m})\n"
+                              for v, m in zip(("Lx0", "Ly0"), measure))
     if scene.boundary == "periodic":
-        return PERIODIC_MEASURES
-    return f"{wall_rows()}\n{WALL_MEASURES}"
+        return PERIODIC_MEASURES.format(lengths=lengths)
+    walls = wall_rows()
+    if resume:
+        walls = "".join(line + "\n" for line in walls.splitlines()
+                        if line.startswith("fix "))
+    return f"{walls}\n{WALL_MEASURES.format(lengths=lengths)}"
 
 
 def _line_vars() -> str:
@@ -156,7 +197,7 @@ def _line_vars() -> str:
     return f"${{k}} $(step) ${{exx}} ${{eyy}} ${{sxx}} ${{syy}} {counts} ${{growth}}"
 
 
-def _quasistatic(scene: Scene, fb: float) -> str:
+def _quasistatic(scene: Scene, fb: float, resume: bool = False) -> str:
     if scene.kind == "expanding":
         step = ("variable        growth equal (1+{e})^v_k-1\n"
                 "set             group grow diameter $(v_d0*(1+v_growth))").format(
@@ -180,6 +221,28 @@ def _quasistatic(scene: Scene, fb: float) -> str:
         minimizer = ""
     else:
         how, minimizer = "FIRE", "min_style       fire\n"
+    saves, start = "", f"""variable        growth equal 0
+variable        k equal 0
+print           "# {' '.join(SCENE_COLUMNS)}" file scene.dat screen no
+print           "{_line_vars()}" append scene.dat screen no
+variable        k delete
+"""
+    first = "1"
+    if scene.restart_every:
+        # the restart file is replaced only once the new one is complete, and the step it
+        # holds is written after it
+        n = scene.restart_every
+        saves = (f"if \"$(v_k%{n}) == 0\" then \"write_restart {RESTART_FILE}.new\" "
+                 f"\"shell mv {RESTART_FILE}.new {RESTART_FILE}\" "
+                 f"\"print 'variable kdone equal ${{k}}' file {RESTART_STEP} screen no\"\n")
+        lengths = (f"print           \"variable Lx0 equal ${{Lx0text}}\" file {RESTART_VARS} "
+                   "screen no\n"
+                   f"print           \"variable Ly0 equal ${{Ly0text}}\" append {RESTART_VARS} "
+                   "screen no\n")
+        start = lengths + start
+    if resume:
+        start = f"include         {RESTART_STEP}\n"
+        first = "$(v_kdone+1)"
     return f"""
 # ---- quasi-static loading (the seed's loop): {scene.n_steps} steps ----
 # {what};
@@ -187,19 +250,14 @@ def _quasistatic(scene: Scene, fb: float) -> str:
 # break the most over-stressed bond, relax again, ... until no bond exceeds its threshold;
 # breaks.txt: every break in order (time step, IDs, mode, ratio to the threshold)
 {minimizer}{thermo(THERMO_COLUMNS + " pe", 1000000)}run             0 post no
-variable        growth equal 0
-variable        k equal 0
-print           "# {' '.join(SCENE_COLUMNS)}" file scene.dat screen no
-print           "{_line_vars()}" append scene.dat screen no
-variable        k delete
-# the number of strain steps; shorten a trial with -var nsteps 2
+{start}# the number of strain steps; shorten a trial with -var nsteps 2
 variable        nsteps index {scene.n_steps}
-variable        k loop ${{nsteps}}
+variable        k loop {first} ${{nsteps}}
 label           strain
 {step}
 {_relax(scene, fb)}run             0 post no
 print           "{_line_vars()}" append scene.dat screen no
-{dumps}next            k
+{dumps}{saves}next            k
 jump            SELF strain
 
 write_dump      all local bonds.final.txt {BOND_RECORDS}
@@ -294,6 +352,55 @@ def write_scene(scene: Scene, out: str | Path, deck_name: str | None = None) -> 
     return {"deck": str(out / name), "data": str(out / DATA_FILE), "particles": scene.n,
             "data_bytes": (out / DATA_FILE).stat().st_size, "expanding": model.expanding,
             "memory_bytes": expected_memory(scene.n, atom_style=scene.atom_style)}
+
+
+def resume_deck(scene: Scene, out: str | Path, model: SceneModel | None = None) -> dict:
+    """Prepare ``out``, the folder of a quasi-static run with ``restart_every`` that was cut
+    off, to go on from its last restart file: ``scene.dat`` and ``breaks.txt`` lose what the
+    run wrote after the strain step the restart file holds (``break.<n>.txt`` of later breaks
+    go), and the resumed deck ``in.<kind>.quasistatic.resume`` is written.  ``scene`` must be
+    the first run's.  Returns the deck's path and that strain step ("from_step").  Raises
+    ValueError if a file is missing, the files disagree, or the run had finished."""
+    out = Path(out)
+    deck = deck_text(scene, model, resume=True)    # checks the scene
+    missing = [name for name in (RESTART_FILE, RESTART_STEP, RESTART_VARS, "scene.dat")
+               if not (out / name).exists()]
+    if missing:
+        raise ValueError(f"{out}: {', '.join(missing)} missing; a run goes on only from the "
+                         "restart files it wrote (--restart N, Scene.restart_every)")
+    words = (out / RESTART_STEP).read_text().split()
+    if len(words) != 4 or words[:3] != ["variable", "kdone", "equal"] or not words[3].isdigit():
+        raise ValueError(f"{out / RESTART_STEP}: {' '.join(words)!r} is not 'variable kdone "
+                         "equal <step>'")
+    done = int(words[3])
+    if done >= scene.n_steps:
+        raise ValueError(f"{out}: the restart file holds strain step {done} of "
+                         f"{scene.n_steps}: the run had finished, nothing to go on with")
+    lines = (out / "scene.dat").read_text().splitlines()
+    kept = [line for line in lines if line.startswith("#") or not line.strip()
+            or int(float(line.split()[0])) <= done]
+    rows = [line.split() for line in kept if line.strip() and not line.startswith("#")]
+    last = [r for r in rows if int(float(r[0])) == done]
+    if not last:
+        raise ValueError(f"{out / 'scene.dat'}: no line of strain step {done}, which "
+                         f"{RESTART_STEP} says the restart file holds")
+    col = {name: i for i, name in enumerate(SCENE_COLUMNS)}
+    broken = int(float(last[-1][col["tension"]])) + int(float(last[-1][col["shear"]]))
+    (out / "scene.dat").write_text("\n".join(kept) + "\n")
+    log = out / "breaks.txt"
+    if log.exists():
+        breaks = [line for line in log.read_text().splitlines() if line.strip()]
+        if len(breaks) < broken:
+            raise ValueError(f"{log}: {len(breaks)} breaks, fewer than the {broken} broken "
+                             f"bonds of strain step {done} in scene.dat")
+        log.write_text("".join(line + "\n" for line in breaks[:broken]))
+    for dump in out.glob("break.*.txt"):
+        tag = dump.name.split(".")[1]
+        if tag.isdigit() and int(tag) > broken:
+            dump.unlink()
+    path = out / f"in.{scene.kind}.{scene.mode}.resume"
+    path.write_text(deck)
+    return {"deck": str(path), "from_step": done}
 
 
 def expected_memory(n: int, ranks: int = 1, atom_style: str = "sphere") -> float:

@@ -136,6 +136,9 @@ class Scene:
     # >0 (quasi-static): break.<n>.txt after each of the first break_order breaks, n = 1, 2,
     # ...: the exact order of the first breaks (within a strain step too)
     break_order: int = 0
+    # >0 (quasi-static): restart.scene every this many strain steps, for a run cut off to
+    # go on from (scene_deck.resume_deck)
+    restart_every: int = 0
     maxsteps: int = 100000         # per relaxation (lattice/quasistatic maxsteps)
     relax: str = "direct"          # quasistatic: RELAXATIONS
     threads: int = 1               # relax direct: threads of its factor and solves (rank 0)
@@ -208,6 +211,12 @@ class Scene:
             raise ValueError(f"bond_dumps = {self.bond_dumps} is out of range: need >= 0")
         if self.break_order < 0:
             raise ValueError(f"break_order = {self.break_order} is out of range: need >= 0")
+        if self.restart_every < 0:
+            raise ValueError(f"restart_every = {self.restart_every} is out of range: need >= 0")
+        if self.restart_every and self.mode != "quasistatic":
+            raise ValueError(f"restart_every = {self.restart_every} with mode = {self.mode!r}: "
+                             "the restart files are written between the quasi-static steps; "
+                             "use mode quasistatic or restart_every 0")
         if self.break_order and self.mode != "quasistatic":
             raise ValueError(f"break_order = {self.break_order} with mode = {self.mode!r}: "
                              "the breaks are ordered by the quasi-static loop only")

@@ -19,8 +19,8 @@ from .runner import RunResult
 from .scene_analysis import relaxation_costs
 from .scenes import (Scene, SceneModel, bond_angles, box_lattice, box_period, break_steps,
                      broken_bonds, build_model, crack_normal_stats, first_breaks_near_edges,
-                     lattice_bond_ids, read_bond_dump, read_scene_dat, scene_title,
-                     write_scene)
+                     lattice_bond_ids, read_bond_dump, read_scene_dat, resume_deck,
+                     scene_title, write_scene)
 from .study import Study
 
 __all__ = ["SceneStudy", "first_breaks_at_edges", "fracture_summary", "fractures_along",
@@ -136,14 +136,20 @@ class SceneStudy(Study):
     json_end = "\n"
 
     def __init__(self, scene: Scene, out: str | Path, np_: int = 1, pictures: bool = True,
-                 progress: bool = False) -> None:
+                 progress: bool = False, resume: bool = False) -> None:
         super().__init__(out, np_=np_, progress=progress, pictures=pictures)
         self.scene = scene
+        self.resume = resume
+        self.resumed_from: int | None = None
 
     def _plan(self) -> None:
         self.model = build_model(self.scene)
 
     def _write(self) -> Path:
+        if self.resume:
+            info = resume_deck(self.scene, self.out, self.model)
+            self.resumed_from = info["from_step"]
+            return Path(info["deck"])
         return Path(write_scene(self.scene, self.out)["deck"])
 
     def _failure(self, result: RunResult) -> str:
@@ -162,14 +168,19 @@ class SceneStudy(Study):
         summary["wall_time_s"] = round(self.result.wall_time, 2)
         summary["ranks"] = self.np_
         summary["expanding"] = self.model.expanding
+        if self.resumed_from is not None:
+            # the wall time and the relaxation counts are the resumed part's
+            summary["resumed_from_step"] = self.resumed_from
         return summary
 
 
 def run_scene(scene: Scene, out: str | Path, np_: int = 1, pictures: bool = True,
-              progress: bool = False) -> dict:
+              progress: bool = False, resume: bool = False) -> dict:
     """Write, run (``lmp`` on np_ ranks), measure and plot a scene (:class:`SceneStudy`);
-    returns the summary, also written to ``out/summary.json``."""
-    return SceneStudy(scene, out, np_=np_, pictures=pictures, progress=progress).run()
+    returns the summary, also written to ``out/summary.json``.  ``resume``: go on with the
+    cut-off run in ``out`` from its last restart file instead (:func:`resume_deck`)."""
+    return SceneStudy(scene, out, np_=np_, pictures=pictures, progress=progress,
+                      resume=resume).run()
 
 
 def picture_scene(scene: Scene, out: str | Path, model: SceneModel | None = None,

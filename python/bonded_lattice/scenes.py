@@ -61,7 +61,7 @@ from .scene_analysis import (bond_angles, break_sequence, break_steps, broken_bo
                              relaxation_costs)
 from .scene_deck import (ATOMIC_SAVING_PER_PARTICLE, BYTES_PER_PARTICLE, BYTES_PER_RANK,
                          DATA_FILE, SCENE_COLUMNS, TITLES, deck_text, expected_memory,
-                         read_scene_dat, scene_title, write_scene)
+                         read_scene_dat, resume_deck, scene_title, write_scene)
 from .scene_definition import (BOUNDARIES, DEFAULT_FTOL, DEFORMATIONS, KINDS, MODES, RELAXATIONS,
                                ROW, SQRT3, Scene, central_spring_bond, plane_moduli)
 from .scene_model import (SceneModel, box_lattice, box_period, build_model, expanding_grains,
@@ -74,5 +74,6 @@ __all__ = ["ATOMIC_SAVING_PER_PARTICLE", "BOUNDARIES", "BYTES_PER_PARTICLE", "BY
            "central_spring_bond", "crack_normal_stats", "deck_text", "edge_distance",
            "expanding_grains", "expected_memory", "first_breaks_near_edges", "grain_box",
            "grain_model", "lattice_bond_ids", "periodic_pairs", "plane_moduli", "read_bond_dump",
-           "read_scene_dat", "relaxation_costs", "scene_title", "wall_masks", "write_scene"]
+           "read_scene_dat", "relaxation_costs", "resume_deck", "scene_title", "wall_masks",
+           "write_scene"]
 
