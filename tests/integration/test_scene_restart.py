@@ -22,10 +22,10 @@ from bonded_lattice.scenes import (Scene, break_sequence, read_scene_dat, resume
 STEPS, EVERY, CUT = 6, 2, 3
 
 
-def scene_of(kind: str, relax: str, boundary: str = "walls") -> Scene:
+def scene_of(kind: str, relax: str, boundary: str = "walls", atom_style: str = "sphere") -> Scene:
     extra = {"n_grains": 6, "n_expanding": 1, "strain_step": 2e-4} if kind == "expanding" else {}
     return Scene(kind, n_steps=STEPS, restart_every=EVERY, relax=relax, boundary=boundary,
-                 **extra)
+                 atom_style=atom_style, **extra)
 
 
 def whole_and_resumed(scene: Scene, tmp_path):
@@ -42,14 +42,15 @@ def whole_and_resumed(scene: Scene, tmp_path):
     return whole, cut
 
 
-@pytest.mark.parametrize("kind, boundary", [("layer-extension", "walls"),
-                                            ("polycrystal", "periodic"),
-                                            ("expanding", "walls")])
-def test_relax_local_resumed_is_the_whole_run_to_the_bit(tmp_path, kind, boundary):
+@pytest.mark.parametrize("kind, boundary, atom_style", [("layer-extension", "walls", "sphere"),
+                                                        ("polycrystal", "periodic", "atomic"),
+                                                        ("expanding", "walls", "sphere")])
+def test_relax_local_resumed_is_the_whole_run_to_the_bit(tmp_path, kind, boundary, atom_style):
     """relax local keeps nothing between its calls, so a resumed run repeats the whole run
     exactly: the breaks (order, ratios), scene.dat (strains, stresses, counts) and the final
-    bond records are the same files."""
-    whole, cut = whole_and_resumed(scene_of(kind, "local", boundary), tmp_path)
+    bond records are the same files (atom_style atomic: the mass per type and the pair
+    style's diameter come back from the restart file)."""
+    whole, cut = whole_and_resumed(scene_of(kind, "local", boundary, atom_style), tmp_path)
     assert len(break_sequence(whole)) > 5, "the test must break bonds"
     for name in ("breaks.txt", "scene.dat", "bonds.final.txt"):
         assert (cut / name).read_bytes() == (whole / name).read_bytes(), name
