@@ -376,17 +376,17 @@ def resume_deck(scene: Scene, out: str | Path, model: SceneModel | None = None) 
     if done >= scene.n_steps:
         raise ValueError(f"{out}: the restart file holds strain step {done} of "
                          f"{scene.n_steps}: the run had finished, nothing to go on with")
-    lines = (out / "scene.dat").read_text().splitlines()
-    kept = [line for line in lines if line.startswith("#") or not line.strip()
-            or int(float(line.split()[0])) <= done]
-    rows = [line.split() for line in kept if line.strip() and not line.startswith("#")]
-    last = [r for r in rows if int(float(r[0])) == done]
-    if not last:
+    dat = read_scene_dat(out / "scene.dat")
+    at = np.flatnonzero(dat["k"] == done)
+    if len(at) == 0:
         raise ValueError(f"{out / 'scene.dat'}: no line of strain step {done}, which "
                          f"{RESTART_STEP} says the restart file holds")
-    col = {name: i for i, name in enumerate(SCENE_COLUMNS)}
-    broken = int(float(last[-1][col["tension"]])) + int(float(last[-1][col["shear"]]))
-    (out / "scene.dat").write_text("\n".join(kept) + "\n")
+    last = int(at[-1])
+    broken = int(dat["tension"][last] + dat["shear"][last])
+    # the text up to that line (the header and its data lines, in the reader's order)
+    lines = (out / "scene.dat").read_text().splitlines()
+    data = [i for i, line in enumerate(lines) if line.strip() and not line.startswith("#")]
+    (out / "scene.dat").write_text("\n".join(lines[:data[last] + 1]) + "\n")
     log = out / "breaks.txt"
     if log.exists():
         breaks = [line for line in log.read_text().splitlines() if line.strip()]
