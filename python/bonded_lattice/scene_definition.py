@@ -141,7 +141,7 @@ class Scene:
     restart_every: int = 0
     maxsteps: int = 100000         # per relaxation (lattice/quasistatic maxsteps)
     relax: str = "direct"          # quasistatic: RELAXATIONS
-    threads: int = 1               # relax direct: threads of its factor and solves (rank 0)
+    threads: int = 1               # relax direct: threads of its factor, solves and loops (rank 0)
     # "atomic": per-type mass and pair_style lattice/bond diameter d (less memory); not
     # for expanding grains, whose particles need their own diameters
     atom_style: str = "sphere"

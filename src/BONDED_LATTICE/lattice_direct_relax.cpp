@@ -20,6 +20,7 @@
 #include "lattice_bond_geometry.h"
 #include "lattice_bond_physics.h"
 #include "lattice_relax_model.h"
+#include "lattice_thread_pool.h"
 #include "neighbor.h"
 #include "pair_lattice_bond.h"
 
@@ -64,6 +65,14 @@ static constexpr int STEP_ROUNDS = 2;
 // STEP_HALVINGS times (then the shortest is taken)
 static constexpr double ARMIJO = 1.0e-4;
 static constexpr int STEP_HALVINGS = 40;
+// the loops over the whole network (forces, stretches, energy sums, the
+// worst spring, the longest move) run on the factor's threads in blocks of
+// this many springs or nodes.  Every value is computed by itself and the
+// sums and searches combine them in the order of the serial loop (a node's
+// force from its springs in ID order, the energy change spring by spring in
+// ID order, the first of the largest ratio), so the results are the same,
+// bit for bit, for any number of threads
+static constexpr size_t LOOP_BLOCK = 2048;
 
 namespace {
 // m x = rhs for the symmetric dim x dim block m (Cramer); false if singular
@@ -303,20 +312,63 @@ double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
                                   std::vector<double> &f) const
 {
   const int dim = net.dim;
-  f.assign(u.size(), 0.0);
-  for (Spring &s : net.springs) {
-    spring_force(s, dim, u);
-    for (int c = 0; c < dim; c++) {
-      f[(size_t) s.a * dim + c] += s.f[c];
-      f[(size_t) s.b * dim + c] -= s.f[c];
+  const size_t nnodes = net.tags.size();
+  for_blocks(pool, net.springs.size(), LOOP_BLOCK, [&](size_t, size_t k0, size_t k1) {
+    for (size_t k = k0; k < k1; k++) spring_force(net.springs[k], dim, u);
+  });
+  // each node's force from its springs in ID order: the sum the loop over the springs
+  // (owner +f, partner -f) makes
+  f.resize(u.size());
+  std::vector<double> block_largest((nnodes + LOOP_BLOCK - 1) / LOOP_BLOCK, 0.0);
+  for_blocks(pool, nnodes, LOOP_BLOCK, [&](size_t blk, size_t a0, size_t a1) {
+    double largest = 0.0;
+    for (size_t a = a0; a < a1; a++) {
+      double sum[3] = {0.0, 0.0, 0.0};
+      for (int e = net.node_start[a]; e < net.node_start[a + 1]; e++) {
+        const Spring &s = net.springs[net.node_springs[e]];
+        if ((size_t) s.a == a)
+          for (int c = 0; c < dim; c++) sum[c] += s.f[c];
+        else
+          for (int c = 0; c < dim; c++) sum[c] -= s.f[c];
+      }
+      for (int c = 0; c < dim; c++) {
+        const size_t q = a * dim + c;
+        f[q] = net.free[q] ? sum[c] : 0.0;
+        largest = MAX(largest, std::fabs(f[q]));
+      }
     }
-  }
+    block_largest[blk] = largest;
+  });
   double largest = 0.0;
-  for (size_t q = 0; q < f.size(); q++) {
-    if (!net.free[q]) f[q] = 0.0;
-    largest = MAX(largest, std::fabs(f[q]));
-  }
+  for (const double v : block_largest) largest = MAX(largest, v);
   return largest;
+}
+
+double LatticeDirectRelax::longest_move(const Network &net, const std::vector<double> &v,
+                                        double beyond, std::vector<int> *far) const
+{
+  const int dim = net.dim;
+  const size_t nnodes = net.tags.size(), nblocks = (nnodes + LOOP_BLOCK - 1) / LOOP_BLOCK;
+  std::vector<double> block_longest(nblocks, 0.0);
+  std::vector<std::vector<int>> block_far(far ? nblocks : 0);
+  for_blocks(pool, nnodes, LOOP_BLOCK, [&](size_t blk, size_t a0, size_t a1) {
+    double longest = 0.0;
+    for (size_t a = a0; a < a1; a++) {
+      double sq = 0.0;
+      for (int c = 0; c < dim; c++) sq += v[a * dim + c] * v[a * dim + c];
+      const double move = std::sqrt(sq);
+      longest = MAX(longest, move);
+      if (far && move > beyond) block_far[blk].push_back((int) a);
+    }
+    block_longest[blk] = longest;
+  });
+  double longest = 0.0;
+  for (const double l : block_longest) longest = MAX(longest, l);
+  if (far) {
+    far->clear();
+    for (const auto &b : block_far) far->insert(far->end(), b.begin(), b.end());
+  }
+  return longest;
 }
 
 /* ----------------------------------------------------------------------
@@ -340,12 +392,18 @@ double LatticeDirectRelax::energy_change(const Network &net, const std::vector<d
 {
   // spring by spring: no cancellation between two large sums; the stretches at the
   // start are those of the last force evaluation (s.e)
+  const size_t ns = net.springs.size();
+  scratch.resize(ns);
+  for_blocks(pool, ns, LOOP_BLOCK, [&](size_t, size_t k0, size_t k1) {
+    for (size_t k = k0; k < k1; k++) {
+      const Spring &s = net.springs[k];
+      double d[3];
+      const double e1 = normal_stretch(separation(s, net.dim, to, d), s.touch);
+      scratch[k] = central_energy_change(s.kn, s.intact, s.e, e1);
+    }
+  });
   double sum = 0.0;
-  for (const Spring &s : net.springs) {
-    double d[3];
-    const double e1 = normal_stretch(separation(s, net.dim, to, d), s.touch);
-    sum += central_energy_change(s.kn, s.intact, s.e, e1);
-  }
+  for (size_t k = 0; k < ns; k++) sum += scratch[k];
   return sum;
 }
 
@@ -360,7 +418,9 @@ double LatticeDirectRelax::step_length(const Network &net, const std::vector<dou
   std::vector<double> trial(u.size());
   double alpha = 1.0;
   for (int h = 0; h < STEP_HALVINGS; h++, alpha *= 0.5) {
-    for (size_t q = 0; q < u.size(); q++) trial[q] = net.free[q] ? u[q] + alpha * step[q] : u[q];
+    for_blocks(pool, u.size(), LOOP_BLOCK, [&](size_t, size_t q0, size_t q1) {
+      for (size_t q = q0; q < q1; q++) trial[q] = net.free[q] ? u[q] + alpha * step[q] : u[q];
+    });
     if (energy_change(net, trial) <= -ARMIJO * alpha * slope) return alpha;
   }
   return alpha;
@@ -563,23 +623,26 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
     // the records and neighbour lists of the pass's force evaluation hold while no
     // particle has moved more than half the skin: beyond, the pass ends and the next
     // one's evaluation finds the new contacts (a fragment swinging on its last bonds)
-    double travel = 0.0;
-    for (size_t a = 0; a < net.tags.size(); a++) {
-      double sq = 0.0;
-      for (int c = 0; c < net.dim; c++) sq += u[a * net.dim + c] * u[a * net.dim + c];
-      travel = MAX(travel, sq);
-    }
-    if (std::sqrt(travel) > max_travel) return false;
+    if (longest_move(net, u, 0.0, nullptr) > max_travel) return false;
     const double largest = forces(net, u, f);
+    // the springs that start or stop carrying force, in ID order
+    const size_t ns = net.springs.size();
+    std::vector<std::vector<int>> flips((ns + LOOP_BLOCK - 1) / LOOP_BLOCK);
+    for_blocks(pool, ns, LOOP_BLOCK, [&](size_t blk, size_t k0, size_t k1) {
+      for (size_t k = k0; k < k1; k++) {
+        const Spring &s = net.springs[k];
+        const bool carries = s.intact || !contact_open(s.e);
+        if (carries != (state.in_factor[k] != 0)) flips[blk].push_back((int) k);
+      }
+    });
     int changed = 0;
-    for (size_t k = 0; k < net.springs.size(); k++) {
-      const Spring &s = net.springs[k];
-      const bool carries = s.intact || !contact_open(s.e);
-      if (carries == (state.in_factor[k] != 0)) continue;
-      state.factor.modify(term(state, (int) k), carries ? 1 : -1);
-      state.in_factor[k] = carries ? 1 : 0;
-      changed++;
-    }
+    for (const auto &blk : flips)
+      for (const int k : blk) {
+        const bool carries = state.in_factor[k] == 0;
+        state.factor.modify(term(state, k), carries ? 1 : -1);
+        state.in_factor[k] = carries ? 1 : 0;
+        changed++;
+      }
     out.changes += changed;
     if (largest <= ftol) return true;
     if (step == NEWTON_MAX) break;
@@ -620,21 +683,13 @@ void LatticeDirectRelax::newton_step(Network &net, LatticeDirectState &state,
                                      Outcome &out)
 {
   const int dim = net.dim;
-  const size_t nnodes = net.tags.size();
   std::vector<double> step;
   for (int round = 0;; round++) {
     step = f;
     state.factor.solve(step.data());
     out.solves++;
     std::vector<int> far;
-    double longest = 0.0;
-    for (size_t a = 0; a < nnodes; a++) {
-      double sq = 0.0;
-      for (int c = 0; c < dim; c++) sq += step[a * dim + c] * step[a * dim + c];
-      const double move = std::sqrt(sq);
-      longest = MAX(longest, move);
-      if (move > max_step) far.push_back((int) a);
-    }
+    const double longest = longest_move(net, step, max_step, &far);
     if (far.empty()) break;
     if (round == STEP_ROUNDS) {
       factorise(net, state, u);
@@ -666,8 +721,10 @@ void LatticeDirectRelax::newton_step(Network &net, LatticeDirectState &state,
   const double alpha = step_length(net, u, f, step);
   if (alpha < 1.0)
     for (double &v : step) v *= alpha;
-  for (size_t q = 0; q < u.size(); q++)
-    if (net.free[q]) u[q] += step[q];
+  for_blocks(pool, u.size(), LOOP_BLOCK, [&](size_t, size_t q0, size_t q1) {
+    for (size_t q = q0; q < q1; q++)
+      if (net.free[q]) u[q] += step[q];
+  });
 }
 
 /* ----------------------------------------------------------------------
@@ -701,20 +758,33 @@ void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std
   }
   while (maxbreak < 0 || (bigint) out.breaks.size() < maxbreak) {
     // the springs are in ID order: the first of the largest ratio has the lowest IDs
+    struct Worst {
+      int k = -1;
+      double r = 0.0;
+      BreakMode mode = BreakMode::None;
+    };
+    const size_t ns = net.springs.size();
+    std::vector<Worst> block_worst((ns + LOOP_BLOCK - 1) / LOOP_BLOCK);
+    for_blocks(pool, ns, LOOP_BLOCK, [&](size_t blk, size_t k0, size_t k1) {
+      Worst w;
+      for (size_t k = k0; k < k1; k++) {
+        const Spring &s = net.springs[k];
+        if (!s.intact) continue;
+        BreakMode m;
+        const double r = ratio(s, m);
+        if (r > w.r) w = {(int) k, r, m};
+      }
+      block_worst[blk] = w;
+    });
     int worst = -1;
     double best = 0.0;
     BreakMode best_mode = BreakMode::None;
-    for (size_t k = 0; k < net.springs.size(); k++) {
-      const Spring &s = net.springs[k];
-      if (!s.intact) continue;
-      BreakMode m;
-      const double r = ratio(s, m);
-      if (r > best) {
-        best = r;
-        worst = (int) k;
-        best_mode = m;
+    for (const Worst &w : block_worst)
+      if (w.r > best) {
+        best = w.r;
+        worst = w.k;
+        best_mode = w.mode;
       }
-    }
     if (worst < 0 || !(best > 1.0)) break;
     auto take = [&](int k, BreakMode m, double r) {
       net.springs[k].intact = false;
@@ -763,6 +833,7 @@ LatticeDirectRelax::Outcome LatticeDirectRelax::pass(bigint maxbreak, bool break
     if (!state) state = std::make_shared<LatticeDirectState>();
     try {
       state->factor.set_threads(threads);
+      pool = state->factor.pool();
       break_loop(net, *state, u, maxbreak, break_all, out, on_break);
     } catch (std::exception &e) {
       failure = e.what();

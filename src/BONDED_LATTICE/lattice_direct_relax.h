@@ -97,7 +97,9 @@ class LatticeDirectRelax : protected Pointers {
  private:
   PairLatticeBond *pair;
   double ftol;
-  int threads;    // of the factor's factorisations and solves
+  int threads;    // of the factor's factorisations and solves, and of the loops over the network
+  class LatticeThreadPool *pool = nullptr;    // the factor's (nullptr: one thread)
+  mutable std::vector<double> scratch;        // a value per spring (energy_change)
   double max_step;    // the longest move of a particle in one Newton step
   double max_travel;  // the longest move of a particle in one pass (half the skin)
   std::vector<tagint> held_ids;    // probe_fixes: ID, bits of every particle holding some
@@ -127,8 +129,13 @@ class LatticeDirectRelax : protected Pointers {
   void prepare_factor(Network &net, LatticeDirectState &state, const std::vector<double> &u,
                       Outcome &out);
   void factorise(Network &net, LatticeDirectState &state, const std::vector<double> &u);
-  // rank 0: stretches and free forces at u; returns the largest force component
+  // rank 0: stretches and free forces at u; returns the largest force component.
+  // After break_loop has made the springs of each node (net.node_start, node_springs)
   double forces(Network &net, const std::vector<double> &u, std::vector<double> &f) const;
+  // rank 0: the longest displacement of a node in v (dim per node); the nodes beyond
+  // `beyond` in far, ascending, if far is given
+  double longest_move(const Network &net, const std::vector<double> &v, double beyond,
+                      std::vector<int> *far) const;
   static double separation(const Spring &s, int dim, const std::vector<double> &u, double d[3]);
   void spring_force(Spring &s, int dim, const std::vector<double> &u) const;
   // rank 0: the springs' energy at `to` minus at the last force evaluation (their e);

@@ -116,6 +116,9 @@ class LatticeSparseCholesky {
   // any number); std::invalid_argument below 1.  Any time (the plan is remade)
   void set_threads(int n);
   int threads() const { return threads_; }
+  // the pool of those threads (nullptr for one thread): its user may run other loops on it
+  // between the factor's calls (lattice_thread_pool.h)
+  LatticeThreadPool *pool() const { return pool_.get(); }
   // tasks (subtrees run in parallel) of the current plans; 0: the call runs serially
   int solve_tasks() const { return (int) solve_plan_.roots.size(); }
   int factorise_tasks() const { return (int) factor_plan_.roots.size(); }
