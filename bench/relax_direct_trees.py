@@ -6,14 +6,15 @@ thread count, alternately, and prints per run: particles, breaks, solves, factor
 the wall time of LAMMPS, the wall time per break, particle-solves per second (the solves
 times the particles, over the wall time) and the speed-up of AFTER over BEFORE at the same
 thread count; then whether each run broke the same bonds in the same order, with the same
-ratios, strains and stresses, as the first (breaks.txt and scene.dat byte for byte).
+ratios, strains and stresses and the same final bond records as the first (breaks.txt,
+scene.dat and bonds.final.txt byte for byte).
 
     python bench/relax_direct_trees.py BEFORE_TREE AFTER_TREE                 # n 200, 4 steps
     python bench/relax_direct_trees.py BEFORE AFTER --n 400 --steps 4 --threads 2
 
 The scene's deck and data file are written once (by the package on the Python path) and
 run by each tree's plugin; the runs go into --out (default bench-relax-direct-trees/).
-Exit status 0 when every run's breaks.txt and scene.dat are those of the first.
+Exit status 0 when every run's three files are those of the first.
 """
 
 from __future__ import annotations
@@ -71,7 +72,7 @@ def main() -> int:
             work = args.out / f"{label}_t{threads}"
             wall = run(tree, deck_dir, work, deck)
             costs = relaxation_costs(work / "log.lammps", scene.n)
-            files = {name: (work / name).read_bytes() for name in ("breaks.txt", "scene.dat")}
+            files = {name: (work / name).read_bytes() for name in ("breaks.txt", "scene.dat", "bonds.final.txt")}
             if reference is None:
                 reference = files
             rows.append({"label": label, "threads": threads, "wall": wall, "particles": scene.n,
@@ -91,7 +92,7 @@ def main() -> int:
               f"{before['wall'] / r['wall']:.2f}x |")
     print()
     for r in rows:
-        print(f"{r['label']}, {r['threads']} thread(s): breaks.txt and scene.dat "
+        print(f"{r['label']}, {r['threads']} thread(s): breaks.txt, scene.dat and bonds.final.txt "
               f"{'the same as' if r['same'] else 'DIFFER from'} the first run's")
     return 0 if same else 1
 

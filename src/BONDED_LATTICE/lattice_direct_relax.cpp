@@ -238,6 +238,8 @@ void LatticeDirectRelax::gather(Network &net)
   });
   net.springs.resize(nrec);
   net.keys.resize(nrec);
+  net.intact.resize(nrec);
+  net.e.resize(nrec);
   for (size_t k = 0; k < nrec; k++) {
     const size_t g = rorder[k];
     const tagint owner = all_record_tags[2 * g], partner = all_record_tags[2 * g + 1];
@@ -251,8 +253,8 @@ void LatticeDirectRelax::gather(Network &net)
     s.xb = v[6];
     s.fs0 = v[7];
     s.mu_p = v[8];
-    s.intact = v[9] != 0.0;
-    s.e = normal_stretch(v[3], s.touch);
+    net.intact[k] = v[9] != 0.0;
+    net.e[k] = normal_stretch(v[3], s.touch);
     net.keys[k] = {owner, partner};
   }
 }
@@ -273,10 +275,10 @@ LatticeSpring LatticeDirectRelax::term(const LatticeDirectState &state, int k) c
 }
 
 // PairLatticeBond::bond_load with no shear spring (fs = 0), at the stretch e
-double LatticeDirectRelax::ratio(const Spring &s, BreakMode &mode) const
+double LatticeDirectRelax::ratio(const Spring &s, double e, BreakMode &mode) const
 {
-  const double tension = tensile_ratio(s.e, s.xb);
-  const double shear = shear_ratio(0.0, s.mu_p, normal_force(s.kn, s.e), s.fs0);
+  const double tension = tensile_ratio(e, s.xb);
+  const double shear = shear_ratio(0.0, s.mu_p, normal_force(s.kn, e), s.fs0);
   mode = (tension >= shear) ? BreakMode::Tension : BreakMode::Shear;
   return MAX(tension, shear);
 }
@@ -288,24 +290,22 @@ double LatticeDirectRelax::ratio(const Spring &s, BreakMode &mode) const
    free force component
 ------------------------------------------------------------------------- */
 
-// a spring's owner-to-partner vector d and length at u
-double LatticeDirectRelax::separation(const Spring &s, int dim, const std::vector<double> &u,
-                                      double d[3])
+void LatticeDirectRelax::spring_state(const Spring &s, bool intact, int dim,
+                                      const std::vector<double> &u, double &e, double *f)
 {
-  for (int c = 0; c < 3; c++) d[c] = s.d[c];
+  // the owner-to-partner vector at u
+  double d[3] = {s.d[0], s.d[1], s.d[2]};
   for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
-  return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  e = normal_stretch(r, s.touch);
+  // on the owner along the owner-to-partner vector, tension positive; an open contact none
+  const double scale = (!intact && contact_open(e)) ? 0.0 : normal_force(s.kn, e) / r;
+  for (int c = 0; c < 3; c++) f[c] = scale * d[c];
 }
 
-// a spring's stretch and force on its owner (f, dim components) at u
-void LatticeDirectRelax::spring_force(Spring &s, int dim, const std::vector<double> &u) const
+void LatticeDirectRelax::update_spring(Network &net, size_t k, const std::vector<double> &u)
 {
-  double d[3];
-  const double r = separation(s, dim, u, d);
-  s.e = normal_stretch(r, s.touch);
-  // on the owner along the owner-to-partner vector, tension positive; an open contact none
-  const double scale = (!s.intact && contact_open(s.e)) ? 0.0 : normal_force(s.kn, s.e) / r;
-  for (int c = 0; c < 3; c++) s.f[c] = scale * d[c];
+  spring_state(net.springs[k], net.intact[k] != 0, net.dim, u, net.e[k], &net.f[3 * k]);
 }
 
 double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
@@ -313,9 +313,14 @@ double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
 {
   const int dim = net.dim;
   const size_t nnodes = net.tags.size();
-  for_blocks(pool, net.springs.size(), LOOP_BLOCK, [&](size_t, size_t k0, size_t k1) {
-    for (size_t k = k0; k < k1; k++) spring_force(net.springs[k], dim, u);
-  });
+  // the springs' stretches and forces, unless a Newton step's line search left them at u
+  if (!net.current) {
+    net.f.resize(3 * net.springs.size());
+    for_blocks(pool, net.springs.size(), LOOP_BLOCK, [&](size_t, size_t k0, size_t k1) {
+      for (size_t k = k0; k < k1; k++) update_spring(net, k, u);
+    });
+    net.current = true;
+  }
   // each node's force from its springs in ID order: the sum the loop over the springs
   // (owner +f, partner -f) makes
   f.resize(u.size());
@@ -325,11 +330,11 @@ double LatticeDirectRelax::forces(Network &net, const std::vector<double> &u,
     for (size_t a = a0; a < a1; a++) {
       double sum[3] = {0.0, 0.0, 0.0};
       for (int e = net.node_start[a]; e < net.node_start[a + 1]; e++) {
-        const Spring &s = net.springs[net.node_springs[e]];
-        if ((size_t) s.a == a)
-          for (int c = 0; c < dim; c++) sum[c] += s.f[c];
+        const double *fk = &net.f[3 * (size_t) net.node_springs[e]];
+        if (net.node_owns[e])
+          for (int c = 0; c < dim; c++) sum[c] += fk[c];
         else
-          for (int c = 0; c < dim; c++) sum[c] -= s.f[c];
+          for (int c = 0; c < dim; c++) sum[c] -= fk[c];
       }
       for (int c = 0; c < dim; c++) {
         const size_t q = a * dim + c;
@@ -388,18 +393,20 @@ double LatticeDirectRelax::longest_move(const Network &net, const std::vector<do
    halved step converges; a whole step that lowers the energy is taken whole
 ------------------------------------------------------------------------- */
 
-double LatticeDirectRelax::energy_change(const Network &net, const std::vector<double> &to) const
+double LatticeDirectRelax::energy_change(Network &net, const std::vector<double> &to) const
 {
   // spring by spring: no cancellation between two large sums; the stretches at the
-  // start are those of the last force evaluation (s.e)
+  // start are those of the last force evaluation (e)
   const size_t ns = net.springs.size();
   scratch.resize(ns);
+  net.e_trial.resize(ns);
+  net.f_trial.resize(3 * ns);
   for_blocks(pool, ns, LOOP_BLOCK, [&](size_t, size_t k0, size_t k1) {
     for (size_t k = k0; k < k1; k++) {
       const Spring &s = net.springs[k];
-      double d[3];
-      const double e1 = normal_stretch(separation(s, net.dim, to, d), s.touch);
-      scratch[k] = central_energy_change(s.kn, s.intact, s.e, e1);
+      const bool intact = net.intact[k] != 0;
+      spring_state(s, intact, net.dim, to, net.e_trial[k], &net.f_trial[3 * k]);
+      scratch[k] = central_energy_change(s.kn, intact, net.e[k], net.e_trial[k]);
     }
   });
   double sum = 0.0;
@@ -407,10 +414,11 @@ double LatticeDirectRelax::energy_change(const Network &net, const std::vector<d
   return sum;
 }
 
-double LatticeDirectRelax::step_length(const Network &net, const std::vector<double> &u,
+double LatticeDirectRelax::step_length(Network &net, const std::vector<double> &u,
                                        const std::vector<double> &f,
-                                       const std::vector<double> &step) const
+                                       const std::vector<double> &step, bool &at_trial) const
 {
+  at_trial = false;
   double slope = 0.0;    // -dE/dalpha at u along the step
   for (size_t q = 0; q < u.size(); q++)
     if (net.free[q]) slope += f[q] * step[q];
@@ -421,7 +429,10 @@ double LatticeDirectRelax::step_length(const Network &net, const std::vector<dou
     for_blocks(pool, u.size(), LOOP_BLOCK, [&](size_t, size_t q0, size_t q1) {
       for (size_t q = q0; q < q1; q++) trial[q] = net.free[q] ? u[q] + alpha * step[q] : u[q];
     });
-    if (energy_change(net, trial) <= -ARMIJO * alpha * slope) return alpha;
+    if (energy_change(net, trial) <= -ARMIJO * alpha * slope) {
+      at_trial = true;
+      return alpha;
+    }
   }
   return alpha;
 }
@@ -464,8 +475,9 @@ bool LatticeDirectRelax::smooth(Network &net, std::vector<double> &u, std::vecto
     // D on the free components (a direction no spring resists carries no force)
     double m[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     for (int e = net.node_start[a]; e < net.node_start[a + 1]; e++) {
-      const Spring &s = net.springs[net.node_springs[e]];
-      if (!s.intact && contact_open(s.e)) continue;
+      const size_t k = net.node_springs[e];
+      const Spring &s = net.springs[k];
+      if (!net.intact[k] && contact_open(net.e[k])) continue;
       double d[3] = {s.d[0], s.d[1], s.d[2]};
       for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
       const double rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
@@ -499,11 +511,12 @@ bool LatticeDirectRelax::smooth(Network &net, std::vector<double> &u, std::vecto
     }
     moves++;
     for (int e = net.node_start[a]; e < net.node_start[a + 1]; e++) {
-      Spring &s = net.springs[net.node_springs[e]];
-      const double old[3] = {s.f[0], s.f[1], s.f[2]};
-      spring_force(s, dim, u);
+      const size_t k = net.node_springs[e];
+      const Spring &s = net.springs[k];
+      const double old[3] = {net.f[3 * k], net.f[3 * k + 1], net.f[3 * k + 2]};
+      update_spring(net, k, u);
       for (int c = 0; c < dim; c++) {
-        const double df = s.f[c] - old[c];
+        const double df = net.f[3 * k + c] - old[c];
         if (net.free[(size_t) s.a * dim + c]) f[(size_t) s.a * dim + c] += df;
         if (net.free[(size_t) s.b * dim + c]) f[(size_t) s.b * dim + c] -= df;
       }
@@ -592,7 +605,7 @@ void LatticeDirectRelax::factorise(Network &net, LatticeDirectState &state,
     state.kn[k] = s.kn;
     for (int c = 0; c < 3; c++) state.n[3 * k + c] = (r > 0.0) ? d[c] / r : 0.0;
     mean += s.kn;
-    if (s.intact || !contact_open(s.e)) {
+    if (net.intact[k] || !contact_open(net.e[k])) {
       state.in_factor[k] = 1;
       active.push_back(term(state, (int) k));
     }
@@ -630,8 +643,7 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
     std::vector<std::vector<int>> flips((ns + LOOP_BLOCK - 1) / LOOP_BLOCK);
     for_blocks(pool, ns, LOOP_BLOCK, [&](size_t blk, size_t k0, size_t k1) {
       for (size_t k = k0; k < k1; k++) {
-        const Spring &s = net.springs[k];
-        const bool carries = s.intact || !contact_open(s.e);
+        const bool carries = net.intact[k] || !contact_open(net.e[k]);
         if (carries != (state.in_factor[k] != 0)) flips[blk].push_back((int) k);
       }
     });
@@ -718,13 +730,21 @@ void LatticeDirectRelax::newton_step(Network &net, LatticeDirectState &state,
         out.changes += 2;
       }
   }
-  const double alpha = step_length(net, u, f, step);
+  bool at_trial = false;
+  const double alpha = step_length(net, u, f, step, at_trial);
   if (alpha < 1.0)
     for (double &v : step) v *= alpha;
   for_blocks(pool, u.size(), LOOP_BLOCK, [&](size_t, size_t q0, size_t q1) {
     for (size_t q = q0; q < q1; q++)
       if (net.free[q]) u[q] += step[q];
   });
+  // the line search's last trial is the new u to the bit (u + alpha step, the same
+  // products): its stretches and forces are the springs' now
+  if (at_trial) {
+    net.e.swap(net.e_trial);
+    net.f.swap(net.f_trial);
+  }
+  net.current = at_trial;
 }
 
 /* ----------------------------------------------------------------------
@@ -737,7 +757,8 @@ void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std
                                     const std::function<void(const Break &)> &on_break)
 {
   u.assign(net.free.size(), 0.0);
-  // the springs of each node, for the local smoothing
+  net.current = false;    // e holds the pair style's stretches, f nothing yet
+  // the springs of each node, for the force gather and the local smoothing
   const size_t nnodes = net.tags.size();
   net.node_start.assign(nnodes + 1, 0);
   for (const Spring &s : net.springs) {
@@ -746,8 +767,10 @@ void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std
   }
   for (size_t a = 0; a < nnodes; a++) net.node_start[a + 1] += net.node_start[a];
   net.node_springs.assign(net.node_start[nnodes], 0);
+  net.node_owns.assign(net.node_start[nnodes], 0);
   std::vector<int> fill(net.node_start.begin(), net.node_start.end() - 1);
   for (size_t k = 0; k < net.springs.size(); k++) {
+    net.node_owns[fill[net.springs[k].a]] = 1;
     net.node_springs[fill[net.springs[k].a]++] = (int) k;
     net.node_springs[fill[net.springs[k].b]++] = (int) k;
   }
@@ -768,10 +791,9 @@ void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std
     for_blocks(pool, ns, LOOP_BLOCK, [&](size_t blk, size_t k0, size_t k1) {
       Worst w;
       for (size_t k = k0; k < k1; k++) {
-        const Spring &s = net.springs[k];
-        if (!s.intact) continue;
+        if (!net.intact[k]) continue;
         BreakMode m;
-        const double r = ratio(s, m);
+        const double r = ratio(net.springs[k], net.e[k], m);
         if (r > w.r) w = {(int) k, r, m};
       }
       block_worst[blk] = w;
@@ -787,15 +809,17 @@ void LatticeDirectRelax::break_loop(Network &net, LatticeDirectState &state, std
       }
     if (worst < 0 || !(best > 1.0)) break;
     auto take = [&](int k, BreakMode m, double r) {
-      net.springs[k].intact = false;
+      net.intact[k] = 0;
+      // a broken spring only pushes: its force at u changes
+      if (net.current) update_spring(net, k, u);
       out.breaks.push_back({net.keys[k].first, net.keys[k].second, m, r});
       if (on_break) on_break(out.breaks.back());
     };
     if (break_all) {
       for (size_t k = 0; k < net.springs.size(); k++) {
-        if (!net.springs[k].intact) continue;
+        if (!net.intact[k]) continue;
         BreakMode m;
-        const double r = ratio(net.springs[k], m);
+        const double r = ratio(net.springs[k], net.e[k], m);
         if (r > 1.0) take((int) k, m, r);
       }
     } else {

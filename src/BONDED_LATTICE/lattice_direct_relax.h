@@ -104,15 +104,13 @@ class LatticeDirectRelax : protected Pointers {
   double max_travel;  // the longest move of a particle in one pass (half the skin)
   std::vector<tagint> held_ids;    // probe_fixes: ID, bits of every particle holding some
 
-  // the network on rank 0, in ID order
+  // the network on rank 0, in ID order: what a spring is, and apart from it (compact
+  // arrays the loops stream) what changes during the pass
   struct Spring {
     int a, b;                 // nodes of owner and partner
     double d[3];              // owner-to-partner vector at the pass's start
     double touch;             // rest length
     double kn, xb, fs0, mu_p;
-    bool intact;
-    double e;                 // stretch Xn at the current displacements
-    double f[3];              // its force on the owner there
   };
   struct Network {
     int dim = 0;
@@ -122,6 +120,14 @@ class LatticeDirectRelax : protected Pointers {
     std::vector<Spring> springs;
     std::vector<std::pair<tagint, tagint>> keys;
     std::vector<int> node_start, node_springs;    // the springs of each node (CSR)
+    std::vector<unsigned char> node_owns;         // per entry: 1 if the node is the owner
+    std::vector<unsigned char> intact;      // per spring
+    std::vector<double> e;                  // per spring: stretch Xn at the displacements u
+    std::vector<double> f;                  // 3 per spring: its force on the owner there
+    bool current = false;                   // e and f are those at the current u
+    // energy_change: stretches and forces at its displacements, which a Newton step
+    // that ends there takes over (e and f then need no new evaluation)
+    std::vector<double> e_trial, f_trial;
   };
 
   void gather(Network &net);    // collective; the network on rank 0
@@ -136,13 +142,18 @@ class LatticeDirectRelax : protected Pointers {
   // `beyond` in far, ascending, if far is given
   double longest_move(const Network &net, const std::vector<double> &v, double beyond,
                       std::vector<int> *far) const;
-  static double separation(const Spring &s, int dim, const std::vector<double> &u, double d[3]);
-  void spring_force(Spring &s, int dim, const std::vector<double> &u) const;
-  // rank 0: the springs' energy at `to` minus at the last force evaluation (their e);
-  // the fraction of a Newton step from there to take
-  double energy_change(const Network &net, const std::vector<double> &to) const;
-  double step_length(const Network &net, const std::vector<double> &u,
-                     const std::vector<double> &f, const std::vector<double> &step) const;
+  // spring k's stretch and force on its owner (3 values) at u, for the intact flag given
+  static void spring_state(const Spring &s, bool intact, int dim, const std::vector<double> &u,
+                           double &e, double *f);
+  // spring k's e and f brought to the current u
+  static void update_spring(Network &net, size_t k, const std::vector<double> &u);
+  // rank 0: the springs' energy at `to` minus at the last force evaluation (their e),
+  // leaving the stretches and forces at `to` in e_trial, f_trial; the fraction of a
+  // Newton step from u to take (at_trial: e_trial, f_trial are those at u + the
+  // fraction x step)
+  double energy_change(Network &net, const std::vector<double> &to) const;
+  double step_length(Network &net, const std::vector<double> &u, const std::vector<double> &f,
+                     const std::vector<double> &step, bool &at_trial) const;
   // rank 0: Gauss-Seidel moves of the particles whose force exceeds ftol, at most budget
   bool smooth(Network &net, std::vector<double> &u, std::vector<double> &f,
               bigint budget) const;
@@ -155,7 +166,7 @@ class LatticeDirectRelax : protected Pointers {
   void break_loop(Network &net, LatticeDirectState &state, std::vector<double> &u,
                   bigint maxbreak, bool break_all, Outcome &out,
                   const std::function<void(const Break &)> &on_break);
-  double ratio(const Spring &s, BreakMode &mode) const;
+  double ratio(const Spring &s, double e, BreakMode &mode) const;
   LatticeSpring term(const LatticeDirectState &state, int k) const;
 };
 
