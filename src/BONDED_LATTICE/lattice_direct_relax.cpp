@@ -290,12 +290,17 @@ double LatticeDirectRelax::ratio(const Spring &s, double e, BreakMode &mode) con
    free force component
 ------------------------------------------------------------------------- */
 
+void LatticeDirectRelax::offset(const Spring &s, int dim, const std::vector<double> &u, double d[3])
+{
+  for (int c = 0; c < 3; c++) d[c] = s.d[c];
+  for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+}
+
 void LatticeDirectRelax::spring_state(const Spring &s, bool intact, int dim,
                                       const std::vector<double> &u, double &e, double *f)
 {
-  // the owner-to-partner vector at u
-  double d[3] = {s.d[0], s.d[1], s.d[2]};
-  for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+  double d[3];
+  offset(s, dim, u, d);
   const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   e = normal_stretch(r, s.touch);
   // on the owner along the owner-to-partner vector, tension positive; an open contact none
@@ -478,8 +483,8 @@ bool LatticeDirectRelax::smooth(Network &net, std::vector<double> &u, std::vecto
       const size_t k = net.node_springs[e];
       const Spring &s = net.springs[k];
       if (!net.intact[k] && contact_open(net.e[k])) continue;
-      double d[3] = {s.d[0], s.d[1], s.d[2]};
-      for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+      double d[3];
+      offset(s, dim, u, d);
       const double rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
       for (int p = 0; p < dim; p++)
         for (int q = 0; q < dim; q++) m[p][q] += s.kn * d[p] * d[q] / rsq;
@@ -599,8 +604,7 @@ void LatticeDirectRelax::factorise(Network &net, LatticeDirectState &state,
   for (size_t k = 0; k < ns; k++) {
     const Spring &s = net.springs[k];
     double d[3] = {s.d[0], s.d[1], s.d[2]};
-    for (int c = 0; c < dim && !u.empty(); c++)
-      d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+    if (!u.empty()) offset(s, dim, u, d);
     const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     state.kn[k] = s.kn;
     for (int c = 0; c < 3; c++) state.n[3 * k + c] = (r > 0.0) ? d[c] / r : 0.0;
@@ -717,8 +721,8 @@ void LatticeDirectRelax::newton_step(Network &net, LatticeDirectState &state,
       for (int e = net.node_start[a]; e < net.node_start[a + 1]; e++) {
         const int k = net.node_springs[e];
         const Spring &s = net.springs[k];
-        double d[3] = {s.d[0], s.d[1], s.d[2]};
-        for (int c = 0; c < dim; c++) d[c] += u[(size_t) s.b * dim + c] - u[(size_t) s.a * dim + c];
+        double d[3];
+        offset(s, dim, u, d);
         const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         if (!(r > 0.0)) continue;
         const LatticeSpring old = term(state, k);

@@ -142,7 +142,9 @@ class LatticeDirectRelax : protected Pointers {
   // `beyond` in far, ascending, if far is given
   double longest_move(const Network &net, const std::vector<double> &v, double beyond,
                       std::vector<int> *far) const;
-  // spring k's stretch and force on its owner (3 values) at u, for the intact flag given
+  // a spring's owner-to-partner vector d at the displacements u
+  static void offset(const Spring &s, int dim, const std::vector<double> &u, double d[3]);
+  // a spring's stretch and force on its owner (3 values) at u, for the intact flag given
   static void spring_state(const Spring &s, bool intact, int dim, const std::vector<double> &u,
                            double &e, double *f);
   // spring k's e and f brought to the current u
