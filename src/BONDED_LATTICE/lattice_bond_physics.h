@@ -151,6 +151,18 @@ LB_PHYSICS_INLINE double planar_slid(double ks, double limit, double s)
   return std::copysign(limit / ks, s);
 }
 
+// the stiffness across a central spring that its tension gives, the T / r of
+// its tangent stiffness Kn n n^T + T / r (I - n n^T) (T = Kn Xn): for an
+// intact bond in tension only, so that a sum of these terms stays positive
+// (a compressed spring's term across is negative).  The relaxations use it
+// for a particle on a kinked chain in tension, which has almost no stiffness
+// across its springs from Kn n n^T alone (lattice/quasistatic relax local
+// and relax direct)
+inline double tension_stiffness_across(double kn, double xn, double r, bool intact)
+{
+  return (intact && xn > 0.0 && r > 0.0) ? kn * xn / r : 0.0;
+}
+
 // ratios to the breaking thresholds (lattice/quasistatic, compute
 // lattice/bond/local): tension Fn / (Kn Xb) = Xn / Xb (Liu 2013 eq. 2), shear
 // (Fs + mu_p Fn) / Fs0, the Coulomb limit Fs <= Fs0 - mu_p Fn as a ratio

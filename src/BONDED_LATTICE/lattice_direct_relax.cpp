@@ -274,6 +274,57 @@ LatticeSpring LatticeDirectRelax::term(const LatticeDirectState &state, int k) c
   return t;
 }
 
+namespace {
+// the unit directions across the unit vector n: one in 2D (z x n), two in 3D
+int directions_across(const double n[3], int dim, double t[2][3])
+{
+  if (dim == 2) {
+    t[0][0] = -n[1];
+    t[0][1] = n[0];
+    t[0][2] = 0.0;
+    return 1;
+  }
+  // the axis least along n, made normal to it, then n x that
+  int axis = 0;
+  for (int c = 1; c < 3; c++)
+    if (std::fabs(n[c]) < std::fabs(n[axis])) axis = c;
+  double a[3] = {0.0, 0.0, 0.0};
+  a[axis] = 1.0;
+  double len = 0.0;
+  for (int c = 0; c < 3; c++) {
+    t[0][c] = a[c] - n[axis] * n[c];
+    len += t[0][c] * t[0][c];
+  }
+  len = std::sqrt(len);
+  for (int c = 0; c < 3; c++) t[0][c] /= len;
+  t[1][0] = n[1] * t[0][2] - n[2] * t[0][1];
+  t[1][1] = n[2] * t[0][0] - n[0] * t[0][2];
+  t[1][2] = n[0] * t[0][1] - n[1] * t[0][0];
+  return 2;
+}
+}    // namespace
+
+int LatticeDirectRelax::modify_across(LatticeDirectState &state, int a, int b, double kx,
+                                      const double *n, int sign)
+{
+  if (!(kx > 0.0)) return 0;
+  double t[2][3];
+  const int count = directions_across(n, state.dim, t);
+  for (int q = 0; q < count; q++) state.factor.modify({a, b, kx, {t[q][0], t[q][1], t[q][2]}}, sign);
+  return count;
+}
+
+double LatticeDirectRelax::across_at(const Network &net, const LatticeDirectState &state, int k,
+                                     const std::vector<double> &u) const
+{
+  if (!state.in_factor[k]) return 0.0;
+  const Spring &s = net.springs[k];
+  double d[3] = {s.d[0], s.d[1], s.d[2]};
+  if (!u.empty()) offset(s, net.dim, u, d);
+  const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  return tension_stiffness_across(s.kn, normal_stretch(r, s.touch), r, net.intact[k] != 0);
+}
+
 // PairLatticeBond::bond_load with no shear spring (fs = 0), at the stretch e
 double LatticeDirectRelax::ratio(const Spring &s, double e, BreakMode &mode) const
 {
@@ -387,8 +438,9 @@ double LatticeDirectRelax::longest_move(const Network &net, const std::vector<do
    intact bond at any stretch, a broken one or a contact when closed: the
    energy whose gradient forces() returns), and the length of a Newton step:
    halved until the energy falls by at least ARMIJO of what the step's slope
-   promises.  The factor holds each spring's material stiffness only, Kn n
-   n^T, not the stiffness its tension gives across it (T / r): a particle on
+   promises.  The factor holds each spring's material stiffness, Kn n n^T, and
+   the stiffness its tension gives across it (T / r) only where a step was
+   too long (newton_step): before those terms a particle on
    a kinked chain in tension, whose stiffness across the chain is mostly
    that, overshoots the straight line by far and swings to and fro (three
    particles, a kink of 1e-6 m: 100 passes, 7500 solves, left 95 N out of
@@ -447,8 +499,10 @@ double LatticeDirectRelax::step_length(Network &net, const std::vector<double> &
    mostly near the break) removed locally: Gauss-Seidel over-relaxation of
    the particles whose free force exceeds ftol, in the order they come up
    (relax local's move, D^-1 f with D = sum of Kn n n^T over the springs that
-   carry force, serial on rank 0).  f holds the forces at u and is kept up to
-   date.  false if `budget` moves did not bring every force below ftol
+   carry force and, for those in tension, the stiffness across them that
+   their tension gives, T / r (I - n n^T); serial on rank 0).  f holds the
+   forces at u and is kept up to date.  false if `budget` moves did not bring
+   every force below ftol
 ------------------------------------------------------------------------- */
 
 bool LatticeDirectRelax::smooth(Network &net, std::vector<double> &u, std::vector<double> &f,
@@ -486,8 +540,12 @@ bool LatticeDirectRelax::smooth(Network &net, std::vector<double> &u, std::vecto
       double d[3];
       offset(s, dim, u, d);
       const double rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+      const double r = std::sqrt(rsq);
+      const double across =
+          tension_stiffness_across(s.kn, normal_stretch(r, s.touch), r, net.intact[k] != 0);
       for (int p = 0; p < dim; p++)
-        for (int q = 0; q < dim; q++) m[p][q] += s.kn * d[p] * d[q] / rsq;
+        for (int q = 0; q < dim; q++)
+          m[p][q] += (s.kn - across) * d[p] * d[q] / rsq + (p == q ? across : 0.0);
     }
     double rhs[3] = {0, 0, 0}, trace = 0.0;
     for (int c = 0; c < dim; c++) trace += m[c][c];
@@ -614,6 +672,11 @@ void LatticeDirectRelax::factorise(Network &net, LatticeDirectState &state,
       active.push_back(term(state, (int) k));
     }
   }
+  // the stiffness across the springs in tension only for the springs of a particle whose
+  // Newton step was too long, at their tension then (newton_step).  In the whole factor
+  // it would be stale in the next pass: a particle left on a single bond whose tension
+  // has changed since would be swung across the bond, where the minimiser pulls it along
+  state.across.assign(ns, 0.0);
   mean = ns ? mean / (double) ns : 1.0;
   state.shift = SHIFT * mean;
   state.factor.factorise(active, state.shift);
@@ -655,6 +718,11 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
     for (const auto &blk : flips)
       for (const int k : blk) {
         const bool carries = state.in_factor[k] == 0;
+        if (!carries) {
+          changed += modify_across(state, state.ends[k].first, state.ends[k].second,
+                                   state.across[k], &state.n[3 * (size_t) k], -1);
+          state.across[k] = 0.0;
+        }
         state.factor.modify(term(state, k), carries ? 1 : -1);
         state.in_factor[k] = carries ? 1 : 0;
         changed++;
@@ -688,7 +756,9 @@ bool LatticeDirectRelax::equilibrate(Network &net, LatticeDirectState &state,
    from their turn since the factor was made would move it by that force over
    the shift.  So a particle whose step exceeds max_step has its springs'
    directions brought up to date in the factor (an update and a downdate
-   each) and the step is solved again; after STEP_ROUNDS such rounds the
+   each), with the stiffness across them that their tension gives, T / r
+   (I - n n^T) (tension_stiffness_across; kept until the next factorisation),
+   and the step is solved again; after STEP_ROUNDS such rounds the
    factor is made anew at the current directions, and a step still too long
    is scaled down to max_step (the Newton steps go on from there).  The step
    is then shortened until the energy falls (step_length)
@@ -728,10 +798,14 @@ void LatticeDirectRelax::newton_step(Network &net, LatticeDirectState &state,
         const LatticeSpring old = term(state, k);
         for (int c = 0; c < 3; c++) state.n[3 * (size_t) k + c] = d[c] / r;
         if (!state.in_factor[k]) continue;
-        // the new direction first, then the old one out: the matrix stays definite
+        // the new direction and the stiffness across it that its tension gives now
+        // first, then the old ones out: the matrix stays definite
+        const double kx = across_at(net, state, k, u);
         state.factor.modify(term(state, k), 1);
+        out.changes += 1 + modify_across(state, s.a, s.b, kx, &state.n[3 * (size_t) k], 1);
         state.factor.modify(old, -1);
-        out.changes += 2;
+        out.changes += 1 + modify_across(state, s.a, s.b, state.across[k], old.n, -1);
+        state.across[k] = kx;
       }
   }
   bool at_trial = false;

@@ -7,7 +7,9 @@
    The network of central springs is gathered to rank 0, which finds its
    equilibrium by Newton steps with a sparse Cholesky factor of the
    stiffness K = sum of Kn n n^T over the springs that carry force (intact
-   bonds and closed contacts; LatticeSparseCholesky, nested dissection):
+   bonds and closed contacts; LatticeSparseCholesky, nested dissection),
+   plus, for the springs in tension of a particle whose step came out too
+   long, the stiffness T / r (I - n n^T) their tension gives across them:
    u += K^-1 f(u), with f the force loop's forces for Ks = 0 at the
    displacements u, until no free force component exceeds ftol.  Between
    breaks at small strain the network is nearly linear, so one or two steps
@@ -62,6 +64,10 @@ struct LatticeDirectState {
   // since the factor was made: a new factor when they have cost as much
   double factor_in_solves = 0.0;
   double excess_steps = 0.0;
+  // per spring, the stiffness across it that its tension gives, T / r, in the
+  // factor as T / r (I - n n^T) with the spring's direction n there (0: none;
+  // newton_step sets it, a factorisation clears it)
+  std::vector<double> across;
 };
 
 class LatticeDirectRelax : protected Pointers {
@@ -170,6 +176,15 @@ class LatticeDirectRelax : protected Pointers {
                   const std::function<void(const Break &)> &on_break);
   double ratio(const Spring &s, double e, BreakMode &mode) const;
   LatticeSpring term(const LatticeDirectState &state, int k) const;
+  // spring k's term across (tension_stiffness_across) at the displacements u, with the
+  // direction n that the factor holds for the spring (state.n); 0 if it carries no
+  // tension or is not in the factor
+  double across_at(const Network &net, const LatticeDirectState &state, int k,
+                   const std::vector<double> &u) const;
+  // adds (sign 1) or removes (-1) the term across of stiffness kx for a spring of
+  // direction n between nodes a and b; returns the rank-one changes made
+  static int modify_across(LatticeDirectState &state, int a, int b, double kx, const double *n,
+                           int sign);
 };
 
 }    // namespace LAMMPS_NS

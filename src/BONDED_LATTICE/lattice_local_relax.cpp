@@ -190,7 +190,7 @@ void LatticeLocalRelax::build_springs()
     const double b[6] = {n[0] * n[0], n[1] * n[1], n[2] * n[2], n[0] * n[1], n[0] * n[2], n[1] * n[2]};
     const double r = std::sqrt(d.rsq);
     const double xn = normal_stretch(r, s.touch);
-    const double across = (s.intact && xn > 0.0) ? s.kn * xn / r : 0.0;
+    const double across = tension_stiffness_across(s.kn, xn, r, s.intact);
     const double g[6] = {1.0 - b[0] * inv, 1.0 - b[1] * inv, 1.0 - b[2] * inv, -b[3] * inv,
                          -b[4] * inv, -b[5] * inv};
     for (const int a : {s.i, s.j}) {

@@ -491,21 +491,26 @@ run             0
 
 @pytest.mark.parametrize("relax", ["direct", "local"])
 @pytest.mark.parametrize("kink", [1.0e-7, 1.0e-6, 1.0e-5])
-def test_relax_local_and_direct_straighten_a_kinked_chain_in_tension(lmp_instance, kink, relax):
+def test_relax_local_and_direct_straighten_a_kinked_chain_in_tension(lmp_instance, tmp_path, kink,
+                                                                      relax):
     """Three particles A-P-B, A and B held 2 sqrt((D + 1.5 X0)^2 - kink^2) apart, P moved
     ``kink`` across the line: both bonds stretched by 1.5 X0, in tension. The equilibrium is
     P on the line (the bonds still in tension there, so it is stable). Across the chain P's
     stiffness is mostly its tension's, 2 T / D.
 
-    relax direct: the factor (Kn n n^T only) lacks it, so the whole Newton step overshoots
-    the line by far (e.g. 1.5e-4 m for a kink of 1e-6) and P swung to and fro for 100 passes,
-    ending 3.7e-6 m off the line with 95 N on it; the energy-decreasing step length brings it
-    onto the line. Its Gauss-Seidel moves must also stop at 0.05 r: without that P left the
-    box (kink 1e-7, "Lost atoms").
+    relax direct: with Kn n n^T alone in the factor the whole Newton step overshot the line
+    by far (e.g. 1.5e-4 m for a kink of 1e-6) and P swung to and fro for 100 passes, ending
+    3.7e-6 m off the line with 95 N on it; with the energy-decreasing step length it got
+    there in 15-37 solves. A Newton step that comes out too long now adds the tension's
+    stiffness across each bond in tension, T / r (I - n n^T), to the factor, and the
+    Gauss-Seidel moves hold it too: Newton's method with the tangent stiffness.
+    Its Gauss-Seidel moves must also stop at 0.05 r: without that P left the box (kink 1e-7,
+    "Lost atoms").
 
     relax local: with D = Kn n n^T alone each move sent P out of the box ("Lost atoms", every
     kink); D now holds the tension's stiffness across each bond in tension."""
     lmp = lmp_instance
+    lmp.command(f"log {tmp_path / 'log.lammps'}")
     ftol = 1.0e-2
     half = np.sqrt((D + 1.5 * X0) ** 2 - kink ** 2)
     lmp.commands_string(opening(box=CHAIN_BOX, types=2)
@@ -527,6 +532,51 @@ run             0
     # on the line to ftol over the stiffness across it, 2 T / half (T = Kn 1.5 X0 there)
     tension = KN * (half - D)
     assert abs(p[1]) <= ftol / (2 * tension / half)
+    if relax == "direct":
+        # Newton's method with the tangent stiffness: 2, 4 and 5 solves for kinks of 1e-7,
+        # 1e-6 and 1e-5 (turns of 1e-4 to 1e-2 rad, the last the most nonlinear); 37, 33
+        # and 15 without the tension's term (9 and 7 for the larger kinks with it in the
+        # Newton steps but not in the Gauss-Seidel moves)
+        lmp.command("log none")
+        log = (tmp_path / "log.lammps").read_text()
+        solves = [int(m) for m in re.findall(r"\((\d+) solves", log)]
+        assert solves and sum(solves) <= 5, log
+
+
+def test_relax_direct_straightens_a_kinked_chain_in_3d(lmp_instance, tmp_path):
+    """The kinked chain of the test above in 3D, P moved 1e-6 m across the line along (0, 1,
+    1) / sqrt 2: the tension's stiffness across each bond has two directions there (relax
+    direct adds both), and the step needs both. Without them 25 solves; with them 4, as
+    in 2D (the kink of 1e-6)."""
+    lmp = lmp_instance
+    lmp.command(f"log {tmp_path / 'log.lammps'}")
+    # Kn in 3D is in N/m: the force across the kink, 2 T kink / D, is 0.014 N
+    ftol, kink = 1.0e-5, 1.0e-6
+    half = np.sqrt((D + 1.5 * X0) ** 2 - kink ** 2)
+    lmp.commands_string(opening(dim=3, box="-2e-3 5e-3 -2e-3 2e-3 -2e-3 2e-3", types=2)
+                        + atoms_at([(0, 0, 0), (2 * half, 0, 0),
+                                    (half, kink / np.sqrt(2), kink / np.sqrt(2))], types=[2, 2, 1])
+                        + sphere_props(mass=QUARTZ_MASS[3])
+                        + pair_lines(coeffs(QUARTZ[3], Ks=0, Xb=10 * X0, Fs0=1.0e6, mu_p=0.0))
+                        + f"""\
+neighbor        1.0e-4 bin
+group           held type 2
+fix             hold held setforce 0 0 0
+run             0
+lattice/quasistatic ftol {ftol} relax direct
+run             0
+""")
+    ids = list(lmp.numpy.extract_atom("id"))
+    p = lmp.numpy.extract_atom("x")[ids.index(3)]
+    f = lmp.numpy.extract_atom("f")[ids.index(3)]
+    assert np.abs(f).max() <= ftol
+    # on the line to ftol over the stiffness across it, 2 T / half, in y and in z
+    tension = QUARTZ[3].Kn * (half - D)
+    assert np.hypot(p[1], p[2]) <= ftol / (2 * tension / half)
+    lmp.command("log none")
+    log = (tmp_path / "log.lammps").read_text()
+    solves = [int(m) for m in re.findall(r"\((\d+) solves", log)]
+    assert solves and sum(solves) <= 5, log
 
 
 def passing_a_contact(lmp, relax: str) -> tuple[float, float, list[int]]:
