@@ -379,7 +379,8 @@ void LatticeBondRecords::settle_record_trouble(RecordTrouble &trouble, const big
   bigint dropped = 0;
   if (counts_all[1] > 0) {
     const int nprocs = comm->nprocs;
-    const int nmine = (int) trouble.missing.size();
+    // not const: LAMMPS' serial MPI stubs take the send buffers as void *
+    int nmine = (int) trouble.missing.size();
     std::vector<int> nper(nprocs), offset(nprocs, 0);
     MPI_Allgather(&nmine, 1, MPI_INT, nper.data(), 1, MPI_INT, world);
     for (int p = 1; p < nprocs; p++) offset[p] = offset[p - 1] + nper[p - 1];

@@ -152,7 +152,9 @@ std::vector<T> gather_to_root(const std::vector<T> &mine, MPI_Datatype type, MPI
   MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, world);
   for (int p = 1; p < nprocs; p++) offsets[p] = offsets[p - 1] + counts[p - 1];
   std::vector<T> all(offsets[nprocs - 1] + counts[nprocs - 1]);
-  MPI_Gatherv(mine.data(), count, type, all.data(), counts.data(), offsets.data(), type, 0, world);
+  // LAMMPS' serial MPI stubs take the send buffer as void *
+  MPI_Gatherv(const_cast<T *>(mine.data()), count, type, all.data(), counts.data(), offsets.data(),
+              type, 0, world);
   return all;
 }
 }    // namespace
