@@ -316,17 +316,6 @@ int LatticeDirectRelax::modify_across(LatticeDirectState &state, int a, int b, d
   return count;
 }
 
-double LatticeDirectRelax::across_at(const Network &net, const LatticeDirectState &state, int k,
-                                     const std::vector<double> &u) const
-{
-  if (!state.in_factor[k]) return 0.0;
-  const Spring &s = net.springs[k];
-  double d[3] = {s.d[0], s.d[1], s.d[2]};
-  if (!u.empty()) offset(s, net.dim, u, d);
-  const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  return tension_stiffness_across(s.kn, normal_stretch(r, s.touch), r, net.intact[k] != 0);
-}
-
 // PairLatticeBond::bond_load with no shear spring (fs = 0), at the stretch e
 double LatticeDirectRelax::ratio(const Spring &s, double e, BreakMode &mode) const
 {
@@ -802,7 +791,8 @@ void LatticeDirectRelax::newton_step(Network &net, LatticeDirectState &state,
         if (!state.in_factor[k]) continue;
         // the new direction and the stiffness across it that its tension gives now
         // first, then the old ones out: the matrix stays definite
-        const double kx = across_at(net, state, k, u);
+        const double kx =
+            tension_stiffness_across(s.kn, normal_stretch(r, s.touch), r, net.intact[k] != 0);
         state.factor.modify(term(state, k), 1);
         out.changes += 1 + modify_across(state, s.a, s.b, kx, &state.n[3 * (size_t) k], 1);
         state.factor.modify(old, -1);

@@ -176,11 +176,6 @@ class LatticeDirectRelax : protected Pointers {
                   const std::function<void(const Break &)> &on_break);
   double ratio(const Spring &s, double e, BreakMode &mode) const;
   LatticeSpring term(const LatticeDirectState &state, int k) const;
-  // spring k's term across (tension_stiffness_across) at the displacements u, with the
-  // direction n that the factor holds for the spring (state.n); 0 if it carries no
-  // tension or is not in the factor
-  double across_at(const Network &net, const LatticeDirectState &state, int k,
-                   const std::vector<double> &u) const;
   // adds (sign 1) or removes (-1) the term across of stiffness kx for a spring of
   // direction n between nodes a and b; returns the rank-one changes made
   static int modify_across(LatticeDirectState &state, int a, int b, double kx, const double *n,
