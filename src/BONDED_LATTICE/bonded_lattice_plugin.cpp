@@ -17,9 +17,11 @@
 #include "lattice_quasistatic.h"
 #include "lammps.h"
 #include "pair_lattice_bond.h"
-#include "bonded_lattice_version.h"
-#include "command.h"
+#include "bonded_lattice_config.h"
+#include "bonded_lattice_info.h"
 #include "comm.h"
+#include "error.h"
+#include "input.h"
 
 using namespace LAMMPS_NS;
 
@@ -44,22 +46,6 @@ void lammpsplugin_init(void *, void *, void *);
 
 namespace {
 
-// "bonded_lattice/<version>": prints the package version and its styles;
-// its name makes `plugin list` show which version is loaded
-class CommandBondedLatticeInfo : public Command {
- public:
-  CommandBondedLatticeInfo(LAMMPS *lmp) : Command(lmp) {}
-  void command(int, char **) override
-  {
-    if (comm->me == 0)
-      utils::logmesg(lmp,
-                     "BONDED_LATTICE {} (built for LAMMPS {}): pair_style lattice/bond, fix "
-                     "lattice/nve, fix lattice/viscous, fix lattice/wall, compute lattice/bonds, compute lattice/bond/local, compute lattice/energy, "
-                     "write_lattice_bonds, read_lattice_bonds, lattice/quasistatic\n",
-                     BONDED_LATTICE_VERSION, BONDED_LATTICE_LAMMPS_VERSION);
-  }
-};
-
 Pair *pair_lattice_bond_creator(LAMMPS *lmp) { return new PairLatticeBond(lmp); }
 Fix *fix_store_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeBondStore(lmp, narg, arg); }
 Fix *fix_nve_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeNVE(lmp, narg, arg); }
@@ -69,7 +55,7 @@ Compute *compute_bonds_creator(LAMMPS *lmp, int narg, char **arg) { return new C
 Compute *compute_bond_local_creator(LAMMPS *lmp, int narg, char **arg) { return new ComputeLatticeBondLocal(lmp, narg, arg); }
 Compute *compute_energy_creator(LAMMPS *lmp, int narg, char **arg) { return new ComputeLatticeEnergy(lmp, narg, arg); }
 Fix *fix_energy_creator(LAMMPS *lmp, int narg, char **arg) { return new FixLatticeEnergy(lmp, narg, arg); }
-Command *info_creator(LAMMPS *lmp) { return new CommandBondedLatticeInfo(lmp); }
+Command *info_creator(LAMMPS *lmp) { return new BondedLatticeInfo(lmp); }
 Command *write_bonds_creator(LAMMPS *lmp) { return new WriteLatticeBonds(lmp); }
 Command *read_bonds_creator(LAMMPS *lmp) { return new ReadLatticeBonds(lmp); }
 Command *quasistatic_creator(LAMMPS *lmp) { return new LatticeQuasistatic(lmp); }
@@ -78,9 +64,22 @@ Command *quasistatic_creator(LAMMPS *lmp) { return new LatticeQuasistatic(lmp); 
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
+  auto lammps = (LAMMPS *) lmp;
+  // a LAMMPS with the package compiled in has the command `bonded_lattice`
+  // (bonded_lattice_info.h); the plugin would override its styles, possibly
+  // with another version, so it registers nothing and says so
+  if (lammps->input->command_map->count("bonded_lattice")) {
+    if (lammps->comm->me == 0)
+      lammps->error->warning(FLERR,
+                             "BONDED_LATTICE is compiled into this LAMMPS: its styles are used "
+                             "and the plugin (version {}) is not registered; remove the plugin "
+                             "from LAMMPS_PLUGIN_PATH or `plugin load` to silence this",
+                             BONDED_LATTICE_VERSION);
+    return;
+  }
   auto register_plugin = (lammpsplugin_regfunc) regfunc;
   lammpsplugin_t plugin;
-  plugin.version = ((LAMMPS *) lmp)->version;
+  plugin.version = lammps->version;
   plugin.author = "bonded_lattice developers";
   plugin.handle = handle;
   // the creator is a union: LAMMPS calls it with one argument (pair styles,
