@@ -12,8 +12,8 @@
 # target and the style lists exist.  Appending `include(<this file>)` to LAMMPS'
 # cmake/CMakeLists.txt (as DeePMD-kit's built-in mode does) works as well.
 #
-# What it does: adds src/BONDED_LATTICE/*.cpp (not the plugin's registration file)
-# to the `lammps` target, compiled with the plugin's options; writes
+# What it does: adds src/BONDED_LATTICE/*.cpp (not the plugin's registration file),
+# and with LAMMPS' OPENMP package src/BONDED_LATTICE/OPENMP/*.cpp, to the `lammps` target, compiled with the plugin's options; writes
 # bonded_lattice_config.h (versions, build mode, and the LAMMPS interface switches
 # found by compiling against this LAMMPS: cmake/BondedLatticeApi.cmake); registers
 # the styles and regenerates LAMMPS' style headers, so that `pair_style
@@ -40,9 +40,10 @@ endif()
 set_property(GLOBAL PROPERTY BONDED_LATTICE_BUILTIN_INCLUDED TRUE)
 get_filename_component(BONDED_LATTICE_ROOT "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
 
-# the package's headers, copied (configure_file rewrites a copy only when it changed,
-# and re-runs CMake when a header changes)
-function(_bonded_lattice_headers src inc)
+# the package's headers (and with LAMMPS' OPENMP package those of OPENMP/ in
+# <inc>/OPENMP), copied: configure_file rewrites a copy only when it changed, and
+# re-runs CMake when a header changes
+function(_bonded_lattice_copy_headers src inc)
   file(GLOB headers CONFIGURE_DEPENDS "${src}/*.h")
   file(GLOB stale "${inc}/*.h")
   list(REMOVE_ITEM stale "${inc}/bonded_lattice_config.h")
@@ -55,6 +56,23 @@ function(_bonded_lattice_headers src inc)
     file(REMOVE ${stale})    # headers removed from the package
   endif()
 endfunction()
+
+function(_bonded_lattice_headers src inc)
+  _bonded_lattice_copy_headers("${src}" "${inc}")
+  if(PKG_OPENMP)
+    _bonded_lattice_copy_headers("${src}/OPENMP" "${inc}/OPENMP")
+  else()
+    file(REMOVE_RECURSE "${inc}/OPENMP")
+  endif()
+endfunction()
+
+# register the package's styles with LAMMPS (and its /omp styles with OPENMP)
+macro(_bonded_lattice_register inc)
+  RegisterStyles("${inc}")
+  if(PKG_OPENMP)
+    RegisterStyles("${inc}/OPENMP")
+  endif()
+endmacro()
 
 function(_bonded_lattice_builtin)
   if(NOT TARGET lammps OR NOT COMMAND RegisterStyles OR NOT LAMMPS_STYLE_HEADERS_DIR)
@@ -91,8 +109,15 @@ function(_bonded_lattice_builtin)
 
   file(GLOB sources CONFIGURE_DEPENDS "${src}/*.cpp")
   list(REMOVE_ITEM sources "${src}/bonded_lattice_plugin.cpp")    # `plugin load` only
-  target_sources(lammps PRIVATE ${sources})
   target_include_directories(lammps PRIVATE "${inc}")
+  if(PKG_OPENMP)
+    # pair_style lattice/bond/omp, fix lattice/nve/omp: LAMMPS' OPENMP conventions
+    file(GLOB omp_sources CONFIGURE_DEPENDS "${src}/OPENMP/*.cpp")
+    list(APPEND sources ${omp_sources})
+    target_include_directories(lammps PRIVATE "${inc}/OPENMP")
+    message(STATUS "BONDED_LATTICE: with the /omp styles (LAMMPS' OPENMP package)")
+  endif()
+  target_sources(lammps PRIVATE ${sources})
   # the plugin's options, on the package's files only: sqrt() without errno, and no
   # fused multiply-add contraction (the same bits as the plugin)
   set_source_files_properties(${sources} PROPERTIES
@@ -106,7 +131,7 @@ function(_bonded_lattice_builtin)
   # style headers written again
   file(READ "${LAMMPS_STYLE_HEADERS_DIR}/style_pair.h" style_pair)
   if(NOT style_pair MATCHES "pair_lattice_bond.h")
-    RegisterStyles("${inc}")
+    _bonded_lattice_register("${inc}")
     GenerateStyleHeaders("${LAMMPS_STYLE_HEADERS_DIR}")
   endif()
 
@@ -145,6 +170,6 @@ else()
                         "Modules/StyleHeaderUtils.cmake")
   endif()
   include("${CMAKE_CURRENT_SOURCE_DIR}/Modules/StyleHeaderUtils.cmake")
-  RegisterStyles("${CMAKE_BINARY_DIR}/bonded_lattice")
+  _bonded_lattice_register("${CMAKE_BINARY_DIR}/bonded_lattice")
   cmake_language(DEFER DIRECTORY "${CMAKE_SOURCE_DIR}" CALL _bonded_lattice_builtin)
 endif()

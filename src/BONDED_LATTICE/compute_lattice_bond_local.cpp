@@ -57,7 +57,7 @@ ComputeLatticeBondLocal::~ComputeLatticeBondLocal()
 
 void ComputeLatticeBondLocal::init()
 {
-  pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
+  pair = PairLatticeBond::find(force);
   if (!pair) error->all(FLERR, "compute lattice/bond/local requires pair_style lattice/bond");
 }
 

@@ -69,7 +69,7 @@ ComputeLatticeBonds::~ComputeLatticeBonds()
 
 void ComputeLatticeBonds::init()
 {
-  pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
+  pair = PairLatticeBond::find(force);
   if (!pair) error->all(FLERR, "compute lattice/bonds requires pair_style lattice/bond");
 }
 

@@ -25,7 +25,7 @@
 #include "force.h"
 #include "group.h"
 #include "modify.h"
-#include "pair.h"
+#include "pair_lattice_bond.h"
 
 #include <cstring>
 
@@ -74,7 +74,7 @@ void FixLatticeEnergy::init()
 {
   energy_sources.clear();
   auto *pair = dynamic_cast<LatticeEnergySource *>(force->pair);
-  if (!pair) pair = dynamic_cast<LatticeEnergySource *>(force->pair_match("lattice/bond", 1));
+  if (!pair) pair = static_cast<LatticeEnergySource *>(PairLatticeBond::find(force));
   if (!pair) error->all(FLERR, "compute lattice/energy requires pair_style lattice/bond");
   energy_sources.push_back(pair);
   for (auto *fix : modify->get_fix_list())

@@ -78,7 +78,7 @@ void FixLatticeNVE::init()
 FixLatticeBondStore *FixLatticeNVE::measuring_store() const
 {
   if (igroup != 0) return nullptr;
-  auto *pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
+  auto *pair = PairLatticeBond::find(force);
   if (!pair || !pair->store()) return nullptr;
   for (int i = 0; i < modify->nfix; i++) {
     const Fix *other = modify->fix[i];
@@ -118,36 +118,56 @@ void FixLatticeNVE::final_integrate()
   dispatch(false);
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   the loop compiled for this case, over every atom's range (run_ranges)
+------------------------------------------------------------------------- */
 
 void FixLatticeNVE::dispatch(bool drift)
 {
   const bool planar = domain->dimension == 2;
   const bool all = (igroup == 0);
   const bool rmass = atom->rmass_flag && atom->rmass;
+  const bool measure = drift && store;
+  RangeFn loop;
+  int n = atom->nlocal;
   if (!planar && all && one_mass) {
     // 3D, every atom, one mass: x, v and f as flat streams of 3 nlocal values
-    drift ? (store ? stream<true, true>() : stream<true, false>()) : stream<false, false>();
-    return;
+    loop = drift ? (store ? &FixLatticeNVE::stream<true, true> : &FixLatticeNVE::stream<true, false>)
+                 : &FixLatticeNVE::stream<false, false>;
+  } else if (measure) {
+    if (planar) loop = rmass ? &FixLatticeNVE::drift_measured<true, true> : &FixLatticeNVE::drift_measured<true, false>;
+    else loop = rmass ? &FixLatticeNVE::drift_measured<false, true> : &FixLatticeNVE::drift_measured<false, false>;
+  } else {
+    // one compiled loop per case: 2D or 3D, group all or not, per-atom or
+    // per-type mass, with or without the drift
+    static constexpr RangeFn KICKS[16] = {
+        &FixLatticeNVE::kick<false, false, false, false>, &FixLatticeNVE::kick<false, false, false, true>,
+        &FixLatticeNVE::kick<false, false, true, false>,  &FixLatticeNVE::kick<false, false, true, true>,
+        &FixLatticeNVE::kick<false, true, false, false>,  &FixLatticeNVE::kick<false, true, false, true>,
+        &FixLatticeNVE::kick<false, true, true, false>,   &FixLatticeNVE::kick<false, true, true, true>,
+        &FixLatticeNVE::kick<true, false, false, false>,  &FixLatticeNVE::kick<true, false, false, true>,
+        &FixLatticeNVE::kick<true, false, true, false>,   &FixLatticeNVE::kick<true, false, true, true>,
+        &FixLatticeNVE::kick<true, true, false, false>,   &FixLatticeNVE::kick<true, true, false, true>,
+        &FixLatticeNVE::kick<true, true, true, false>,    &FixLatticeNVE::kick<true, true, true, true>};
+    loop = KICKS[8 * planar + 4 * all + 2 * rmass + drift];
+    n = (igroup == atom->firstgroup) ? atom->nfirst : atom->nlocal;
   }
-  if (drift && store) {
-    if (planar) rmass ? drift_measured<true, true>() : drift_measured<true, false>();
-    else rmass ? drift_measured<false, true>() : drift_measured<false, false>();
-    return;
+  Measure m;
+  if (measure) {
+    m.disp = store->begin_measured_step();
+    m.cap = step_cap();
   }
-  // one compiled loop per case: 2D or 3D, group all or not, per-atom or
-  // per-type mass, with or without the drift
-  using Kick = void (FixLatticeNVE::*)();
-  static constexpr Kick KICKS[16] = {
-      &FixLatticeNVE::kick<false, false, false, false>, &FixLatticeNVE::kick<false, false, false, true>,
-      &FixLatticeNVE::kick<false, false, true, false>,  &FixLatticeNVE::kick<false, false, true, true>,
-      &FixLatticeNVE::kick<false, true, false, false>,  &FixLatticeNVE::kick<false, true, false, true>,
-      &FixLatticeNVE::kick<false, true, true, false>,   &FixLatticeNVE::kick<false, true, true, true>,
-      &FixLatticeNVE::kick<true, false, false, false>,  &FixLatticeNVE::kick<true, false, false, true>,
-      &FixLatticeNVE::kick<true, false, true, false>,   &FixLatticeNVE::kick<true, false, true, true>,
-      &FixLatticeNVE::kick<true, true, false, false>,   &FixLatticeNVE::kick<true, true, false, true>,
-      &FixLatticeNVE::kick<true, true, true, false>,    &FixLatticeNVE::kick<true, true, true, true>};
-  (this->*KICKS[8 * planar + 4 * all + 2 * rmass + drift])();
+  const bool ok = run_ranges(loop, n, m);
+  if (measure) store->end_measured_step(ok);
+}
+
+/* ----------------------------------------------------------------------
+   the loop over atoms 0..n-1 in one range (fix lattice/nve/omp: one per thread)
+------------------------------------------------------------------------- */
+
+bool FixLatticeNVE::run_ranges(RangeFn loop, int n, const Measure &m)
+{
+  return (this->*loop)(0, n, m);
 }
 
 /* ----------------------------------------------------------------------
@@ -169,17 +189,17 @@ double FixLatticeNVE::step_cap() const
    as the other loops
 ------------------------------------------------------------------------- */
 
-template <bool DRIFT, bool MEASURE> void FixLatticeNVE::stream()
+template <bool DRIFT, bool MEASURE> bool FixLatticeNVE::stream(int begin, int end, const Measure &m)
 {
   double *__restrict const x = atom->x[0];
   double *__restrict const v = atom->v[0];
   const double *__restrict const f = atom->f[0];
-  double *__restrict const disp = MEASURE ? store->begin_measured_step() : nullptr;
+  double *__restrict const disp = m.disp;
   const double dtfm = dtfm_type[1], dt = dtv;
-  const int n = 3 * atom->nlocal;
-  const double cap = MEASURE ? step_cap() : HUGE_VAL;
+  const int k0 = 3 * begin, k1 = 3 * end;
+  const double cap = m.cap;
   int bad = 0;
-  for (int k = 0; k < n; k++) {
+  for (int k = k0; k < k1; k++) {
     v[k] += dtfm * f[k];
     if (DRIFT) {
       const double old = x[k];
@@ -191,14 +211,15 @@ template <bool DRIFT, bool MEASURE> void FixLatticeNVE::stream()
       }
     }
   }
-  if (MEASURE) store->end_measured_step(!bad);
+  return !bad;
 }
 
 /* ----------------------------------------------------------------------
    half kick v += dt/2 f/m; with DRIFT also x += dt v
 ------------------------------------------------------------------------- */
 
-template <bool PLANAR, bool ALL, bool RMASS, bool DRIFT> void FixLatticeNVE::kick()
+template <bool PLANAR, bool ALL, bool RMASS, bool DRIFT>
+bool FixLatticeNVE::kick(int begin, int end, const Measure &)
 {
   double *__restrict const x = atom->x[0];
   double *__restrict const v = atom->v[0];
@@ -208,9 +229,8 @@ template <bool PLANAR, bool ALL, bool RMASS, bool DRIFT> void FixLatticeNVE::kic
   const double dt = dtv;    // a local: the stores to x and v cannot change it
   const int *const type = atom->type;
   const int *const mask = atom->mask;
-  const int nlocal = (igroup == atom->firstgroup) ? atom->nfirst : atom->nlocal;
 
-  for (int i = 0; i < nlocal; i++) {
+  for (int i = begin; i < end; i++) {
     if (!ALL && !(mask[i] & groupbit)) continue;
     const double dtfm = RMASS ? dtf / rmass[i] : dtfm_of[type[i]];
     const int k = 3 * i;
@@ -223,6 +243,7 @@ template <bool PLANAR, bool ALL, bool RMASS, bool DRIFT> void FixLatticeNVE::kic
       if (!PLANAR) x[k + 2] += dt * v[k + 2];
     }
   }
+  return true;
 }
 
 /* ----------------------------------------------------------------------
@@ -233,21 +254,21 @@ template <bool PLANAR, bool ALL, bool RMASS, bool DRIFT> void FixLatticeNVE::kic
    and after it that is the current one
 ------------------------------------------------------------------------- */
 
-template <bool PLANAR, bool RMASS> void FixLatticeNVE::drift_measured()
+template <bool PLANAR, bool RMASS>
+bool FixLatticeNVE::drift_measured(int begin, int end, const Measure &m)
 {
   constexpr int DIM = PLANAR ? 2 : 3;
   double *__restrict const x = atom->x[0];
   double *__restrict const v = atom->v[0];
   const double *__restrict const f = atom->f[0];
-  double *__restrict const disp = store->begin_measured_step();
+  double *__restrict const disp = m.disp;
   const double *const rmass = atom->rmass;
   const double *const dtfm_of = dtfm_type.data();
   const double dt = dtv;    // a local: the stores to x and v cannot change it
   const int *const type = atom->type;
-  const int nlocal = atom->nlocal;
-  const double cap = step_cap();
+  const double cap = m.cap;
   int ok = 1;
-  for (int i = 0; i < nlocal; i++) {
+  for (int i = begin; i < end; i++) {
     const double dtfm = RMASS ? dtf / rmass[i] : dtfm_of[type[i]];
     for (int k = 3 * i; k < 3 * i + DIM; k++) {
       v[k] += dtfm * f[k];
@@ -258,5 +279,5 @@ template <bool PLANAR, bool RMASS> void FixLatticeNVE::drift_measured()
       ok &= (std::fabs(step) <= cap);
     }
   }
-  store->end_measured_step(ok);
+  return ok;
 }

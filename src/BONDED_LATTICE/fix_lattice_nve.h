@@ -35,16 +35,26 @@ class FixLatticeNVE : public Fix {
   std::vector<double> dtfm_type;
   bool one_mass = false;    // per-type masses, all equal
 
+  // the steps' measurement for the record store (drift with a measuring store)
+  struct Measure {
+    double *disp = nullptr;    // the store's displacement array (3 per atom)
+    double cap = 0.0;          // longest step that is not an instability
+  };
+  // a loop over the atoms begin..end-1; false if a measured step exceeded the cap
+  using RangeFn = bool (FixLatticeNVE::*)(int begin, int end, const Measure &m);
   // PLANAR: x and y only; ALL: group all, no mask test; RMASS: per-atom
   // mass; DRIFT: also x += dt v (initial_integrate)
-  template <bool PLANAR, bool ALL, bool RMASS, bool DRIFT> void kick();
+  template <bool PLANAR, bool ALL, bool RMASS, bool DRIFT> bool kick(int, int, const Measure &);
   void dispatch(bool drift);
+  // runs the loop over atoms 0..n-1: in one range here, in one per thread in
+  // fix lattice/nve/omp (the loops are per atom, so the results are the same bits)
+  virtual bool run_ranges(RangeFn loop, int n, const Measure &m);
 
   // the record store whose displacements the drift measures (see measuring_store)
   class FixLatticeBondStore *store;
   class FixLatticeBondStore *measuring_store() const;
-  template <bool PLANAR, bool RMASS> void drift_measured();
-  template <bool DRIFT, bool MEASURE> void stream();
+  template <bool PLANAR, bool RMASS> bool drift_measured(int, int, const Measure &);
+  template <bool DRIFT, bool MEASURE> bool stream(int, int, const Measure &);
   double step_cap() const;    // longest step that is not an instability
 };
 

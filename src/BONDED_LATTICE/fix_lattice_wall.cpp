@@ -174,7 +174,7 @@ void FixLatticeWall::init()
   // diameter of pair_style lattice/bond (keyword diameter)
   uniform_radius = 0.0;
   if (!atom->radius_flag) {
-    auto *pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
+    auto *pair = PairLatticeBond::find(force);
     if (!pair || !(pair->uniform_diameter() > 0.0))
       error->all(FLERR, "fix lattice/wall needs the particles' radii: per-atom radii (atom_style "
                  "sphere), or pair_style lattice/bond with the keyword diameter for atom_style {}",

@@ -38,7 +38,7 @@ static constexpr int VALUES = 6;    // owner partner state shear[3], as doubles
 
 static PairLatticeBond *lattice_pair(LAMMPS *lmp, const char *command)
 {
-  auto *pair = dynamic_cast<PairLatticeBond *>(lmp->force->pair_match("lattice/bond", 1));
+  auto *pair = PairLatticeBond::find(lmp->force);
   if (!pair)
     lmp->error->all(FLERR, "{} needs pair_style lattice/bond (the bond network belongs to it)",
                     command);

@@ -56,7 +56,7 @@ static constexpr double DMAX_FRACTION = 0.05;
 
 void LatticeQuasistatic::command(int narg, char **arg)
 {
-  pair = dynamic_cast<PairLatticeBond *>(force->pair_match("lattice/bond", 1));
+  pair = PairLatticeBond::find(force);
   if (!pair) error->all(FLERR, "lattice/quasistatic requires pair_style lattice/bond");
   if (narg < 2 || strcmp(arg[0], "ftol") != 0)
     error->all(FLERR, "lattice/quasistatic needs: ftol F [relax minimize|run N|local|direct] [omega W] "

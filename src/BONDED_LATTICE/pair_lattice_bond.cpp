@@ -414,6 +414,18 @@ double PairLatticeBond::init_one(int i, int j)
   return cut_global;
 }
 
+/* ----------------------------------------------------------------------
+   the pair style of this package in use: lattice/bond, or lattice/bond/omp
+   (`-sf omp`, `package omp`), alone or as a sub-style of pair hybrid
+------------------------------------------------------------------------- */
+
+PairLatticeBond *PairLatticeBond::find(Force *force)
+{
+  for (const char *name : {"lattice/bond", "lattice/bond/omp"})
+    if (auto *pair = dynamic_cast<PairLatticeBond *>(force->pair_match(name, 1))) return pair;
+  return nullptr;
+}
+
 /* ---------------------------------------------------------------------- */
 
 void PairLatticeBond::compute(int eflag, int vflag)
@@ -457,7 +469,7 @@ void PairLatticeBond::compute(int eflag, int vflag)
 
   // the displacements the store formed give way to the positions again
   fix_store->end_evaluation();
-  if (vflag_fdotr) virial_fdotr_compute();
+  if (vflag_fdotr && !virial_in_threads) virial_fdotr_compute();
 }
 
 /* ----------------------------------------------------------------------

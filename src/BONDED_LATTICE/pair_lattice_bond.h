@@ -47,6 +47,8 @@ struct LatticeDirectState;
 class PairLatticeBond : public Pair, public LatticeCommCarrier, public LatticeEnergySource {
  public:
   PairLatticeBond(class LAMMPS *);
+  // the pair style lattice/bond (or lattice/bond/omp) in use, nullptr if none
+  static PairLatticeBond *find(class Force *force);
   ~PairLatticeBond() override;
   void compute(int, int) override;
   void settings(int, char **) override;
@@ -169,6 +171,8 @@ class PairLatticeBond : public Pair, public LatticeCommCarrier, public LatticeEn
   int tally_flag;                     // 1: accumulate heat (compute lattice/energy)
   double heat[3];                     // see add_energy_tallies()
   bool breaking_enabled;              // see enable_breaking()
+  // true in pair_style lattice/bond/omp, whose threads sum the f . r virial themselves
+  bool virial_in_threads = false;
 
   void allocate();
   void warn_data_file_has_no_bonds();
@@ -195,8 +199,29 @@ class PairLatticeBond : public Pair, public LatticeCommCarrier, public LatticeEn
   static constexpr int MAX_RECORDS = 64;
   using EvalFn = void (PairLatticeBond::*)();
   int scene_features() const;
-  void run_force_loop();    // the loop compiled for scene_features()
-  template <int F> void eval();
+  // the loop variant that runs feature set F (fewer variants than feature sets)
+  static constexpr int loop_variant(int F);
+  // the loop compiled for scene_features(); pair_style lattice/bond/omp runs it on threads
+  virtual void run_force_loop();
+  void check_spring_components() const;
+  // the loop over the records of particles ifrom..ito-1 (pair_lattice_bond_eval.h)
+  template <int F, class Sink> void eval(int ifrom, int ito, double (*f)[3], Sink &tally);
+  // what the serial loop tallies: energy/virial into Pair's accumulators, heat into heat[]
+  struct SerialTally {
+    PairLatticeBond *style;
+    void pair(int i, int j, int nlocal, double e, double fx, double fy, double fz, double dx,
+              double dy, double dz)
+    {
+      style->ev_tally_xyz(i, j, nlocal, 1, e, 0.0, fx, fy, fz, dx, dy, dz);
+    }
+    void heat(double break_normal, double break_shear, double friction)
+    {
+      style->heat[0] += break_normal;
+      style->heat[1] += break_shear;
+      style->heat[2] += friction;
+    }
+  };
+  template <int F> void eval_all();    // the serial loop: every local particle
   template <int F> static constexpr EvalFn eval_entry();
   template <std::size_t... I>
   static constexpr std::array<EvalFn, sizeof...(I)> make_eval_table(std::index_sequence<I...>);
