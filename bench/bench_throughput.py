@@ -194,6 +194,72 @@ MODELS["lattice/bond:sphere"] = {
         _LB_ATOMIC_SIZES,
         f"set             type 1 diameter {D}\nset             type 1 mass {{mass}}\n").replace(
         f"pair_style      lattice/bond diameter {D}", "pair_style      lattice/bond")}
+# The deck as a user writes it from LAMMPS' manual, not from this package's generator
+# (issue 21): atom_style sphere with per-atom diameter and mass, create_atoms with the
+# lattice's own conventional cells, LAMMPS' default neighbour settings (skin 0.001 m in SI
+# units, one particle diameter here; default bins and sorting), platens moved by fix
+# move, fix nve and LAMMPS' fix viscous on the inner particles
+USER_DECK = {
+    3: """
+units           si
+atom_style      sphere
+dimension       3
+boundary        f f f
+lattice         fcc {a}
+region          box block -1 {n1} -1 {n1} -1 {n1}
+create_box      1 box
+region          block block 0 {n} 0 {n} 0 {n}
+create_atoms    1 region block
+set             type 1 diameter {d}
+set             type 1 mass {mass}
+pair_style      lattice/bond
+pair_coeff      1 1 {kn} {ks} {xb} {fs0} {mup}
+variable        lo equal $(bound(all,zmin))
+variable        hi equal $(bound(all,zmax))
+region          toplayer block INF INF INF INF $(v_hi-{layer}) INF units box
+region          botlayer block INF INF INF INF INF $(v_lo+{layer}) units box
+group           top region toplayer
+group           bottom region botlayer
+group           inner subtract all top bottom
+fix             up top move linear 0 0 0.05
+fix             down bottom move linear 0 0 -0.05
+fix             nve inner nve
+fix             damp inner viscous 0.05
+timestep        {dt}
+thermo          1000
+""",
+    2: """
+units           si
+atom_style      sphere
+dimension       2
+boundary        f f p
+lattice         hex {d}
+region          box block -1 {n1} -1 {n1y} -0.5 0.5
+create_box      1 box
+region          block block 0 {n} 0 {ny} -0.5 0.5
+create_atoms    1 region block
+set             type 1 diameter {d}
+set             type 1 mass {mass}
+pair_style      lattice/bond
+pair_coeff      1 1 {kn} {ks} {xb} {fs0} {mup}
+variable        lo equal $(bound(all,ymin))
+variable        hi equal $(bound(all,ymax))
+region          toplayer block INF INF $(v_hi-{layer}) INF INF INF units box
+region          botlayer block INF INF INF $(v_lo+{layer}) INF INF units box
+group           top region toplayer
+group           bottom region botlayer
+group           inner subtract all top bottom
+fix             up top move linear 0 0.05 0
+fix             down bottom move linear 0 -0.05 0
+fix             nve inner nve
+fix             damp inner viscous 0.05
+fix             plane all enforce2d
+timestep        {dt}
+thermo          1000
+""",
+}
+MODELS["lattice/bond:user-deck"] = {**MODELS["lattice/bond"], "deck": USER_DECK}
+
 FEATURE_MODELS = ["lattice/bond", "lattice/bond:frictionless", "lattice/bond:no-shear",
                   "lattice/bond:two-types", "lattice/bond+energy", "lattice/bond:corotational",
                   "lattice/bond:heterogeneous", "lattice/bond:cell-numbering",
@@ -212,6 +278,12 @@ def build_input(name: str, cells: int, dim: int = 3, numbering: str = "rows") ->
     spec = MODELS[name]
     numbering = spec.get("numbering", numbering)
     p = PARAMS[dim]
+    if "deck" in spec:    # a whole deck of its own (the user-written one)
+        a = math.sqrt(2) * D
+        rows = cells / math.sqrt(3)
+        n = {3: cells - 0.1, 2: cells - 0.1}[dim]
+        return spec["deck"][dim].format(**p, a=a, d=D, n=n, n1=cells + 1, ny=rows - 0.1,
+                                        n1y=rows + 1, layer=0.25 * D)
     values = dict(p, xb_d=p["xb"] / D, fs0x10=10 * p["fs0"])
     parts = [spec["setup"]]
     a = math.sqrt(2) * D

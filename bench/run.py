@@ -1,5 +1,9 @@
 """Benchmark suite: lattice/bond against LAMMPS' BPM bonds, 1 and 2 ranks, memory, features.
 
+The tuned deck (as bonded-lattice writes it) and a deck written as a user would
+(bench_throughput.USER_DECK: atom_style sphere, fix nve, LAMMPS' default neighbour
+settings, platens by fix move) run side by side.
+
 The canonical problem of bench/bench_throughput.py (uniaxial tension of a bonded 3D
 fcc block, quartzite parameters, d = 1 mm, dt = 1e-8 s, viscous damping; in 2D the
 hexagonal equivalent) at several sizes, each model on the same lattice in the same
@@ -32,7 +36,9 @@ HERE = Path(__file__).resolve().parent
 # with the time steps per size (fewer for the large blocks: the BPM peers are slow)
 SIZES = {3: {"quick": [(14, 1000)], "full": [(14, 1000), (23, 400), (37, 100)]},
          2: {"quick": [(105, 1000)], "full": [(105, 1000), (235, 400), (470, 100)]}}
-MODELS = ["lattice/bond", "bpm/spring", "bpm/rotational"]
+MODELS = ["lattice/bond", "bpm/spring", "bpm/rotational", "lattice/bond:user-deck"]
+# the deck as a user writes it (bench_throughput.USER_DECK): measured next to the tuned one
+USER = "lattice/bond:user-deck"
 # lattice/bond variants whose memory differs: the particles numbered by create_atoms'
 # conventional cells instead of row by row (one more record slot per particle), and
 # atom_style sphere (per-atom radius, mass, angular velocity, torque)
@@ -79,13 +85,19 @@ def main() -> None:
                 rates = {m: statistics.median(run[m]["rate"] for run in runs) for m in MODELS}
                 ratios = {m: statistics.median(run["lattice/bond"]["rate"] / run[m]["rate"]
                                                for run in runs) for m in MODELS}
+                # the user-written deck against the tuned one and against bpm/spring
+                user = {peer: statistics.median(run[USER]["rate"] / run[peer]["rate"]
+                                                for run in runs)
+                        for peer in ("lattice/bond", "bpm/spring")}
                 particles = runs[0]["lattice/bond"]["particles"]
                 rows.append(dict(dim=dim, particles=particles, ranks=ranks, cells=cells,
-                                 rates=rates, ratios=ratios))
+                                 rates=rates, ratios=ratios, user=user))
                 print(f"{dim}D {particles:8d} particles, {ranks} rank(s): "
                       + ", ".join(f"{m} {rates[m]:.3g}" for m in MODELS)
                       + " particle-steps/s; lattice/bond is "
-                      + ", ".join(f"{ratios[m]:.2f}x {m}" for m in MODELS[1:])
+                      + ", ".join(f"{ratios[m]:.2f}x {m}" for m in MODELS[1:3])
+                      + f"; the user-written deck is {user['lattice/bond']:.2f}x the tuned deck,"
+                      + f" {user['bpm/spring']:.2f}x bpm/spring"
                       + (f" (median of {args.repeat})" if args.repeat > 1 else ""),
                       flush=True)
 
@@ -119,8 +131,9 @@ def main() -> None:
           f"{' --features' if args.features else ''}"
           f"{f' --repeat {args.repeat}' if args.repeat > 1 else ''}`\n")
     print("| dim | particles | ranks | lattice/bond (particle-steps/s) | vs bpm/spring "
-          "| vs bpm/rotational | two-rank efficiency |")
-    print("|---|---|---|---|---|---|---|")
+          "| vs bpm/rotational | two-rank efficiency | user-written deck vs tuned "
+          "| user-written deck vs bpm/spring |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for row in rows:
         rates = row["rates"]
         ref = rates["lattice/bond"]
@@ -130,7 +143,8 @@ def main() -> None:
                        and r["ranks"] == 1)
             eff = f"{ref / (2 * one['rates']['lattice/bond']):.2f}"
         print(f"| {row['dim']}D | {row['particles']} | {row['ranks']} | {ref:.3g} | "
-              f"{row['ratios']['bpm/spring']:.2f} | {row['ratios']['bpm/rotational']:.1f} | {eff} |")
+              f"{row['ratios']['bpm/spring']:.2f} | {row['ratios']['bpm/rotational']:.1f} | {eff} | "
+              f"{row['user']['lattice/bond']:.2f} | {row['user']['bpm/spring']:.2f} |")
     if memory:
         print("\n| dim | particles | model | peak memory (bytes/particle, 1 rank) |")
         print("|---|---|---|---|")

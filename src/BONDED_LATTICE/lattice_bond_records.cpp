@@ -20,6 +20,7 @@
 #include "neighbor.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 
 using namespace LAMMPS_NS;
@@ -323,17 +324,24 @@ void LatticeBondRecords::collect_candidates(NeighList *list, const LatticeRadii 
   const tagint *tag = atom->tag;
   cand_i.clear();
   cand_j.clear();
+  cand_min_gap = HUGE_VAL;
+  cand_moved = 0.0;
+  cand_fresh = true;
   const double skin = neighbor->skin;
   for_each_owned_pair(list, [&](int i, int j) {
     const PairSeparation d = pair_separation(x, i, j);
-    const double reach = radius.touch(i, j) + skin;
+    const double touch = radius.touch(i, j);
+    const double reach = touch + skin;
     if (d.rsq >= reach * reach) return;
     if (has_record_with(i, tag[j])) return;
     // two atoms on top of each other would have no contact normal
-    const double near = COINCIDENT_FRACTION * radius.touch(i, j);
+    const double near = COINCIDENT_FRACTION * touch;
     if (d.rsq < near * near) check_overlap(i, j, d.rsq, radius, nullptr);
     cand_i.push_back(i);
     cand_j.push_back(j);
+    // the gap, less a margin of 1e-9 of the touching distance for the rounding
+    // of this and of the bound on the displacements
+    cand_min_gap = std::min(cand_min_gap, sqrt(d.rsq) - touch * (1.0 + 1.0e-9));
   });
 }
 
@@ -522,8 +530,26 @@ void LatticeBondRecords::planar_springs_from_vectors()
    unbonded candidate pairs that now overlap become contact records
 ------------------------------------------------------------------------- */
 
-void LatticeBondRecords::detect_new_contacts(const LatticeRadii &radius)
+void LatticeBondRecords::detect_new_contacts(const LatticeRadii &radius, const double *disp, int n)
 {
+  // Two atoms closed their gap by at most the sum of their displacements since
+  // the collection, so no candidate can touch while twice the largest
+  // displacement of any atom here (local or ghost) is below the smallest gap.
+  // The bound grows by this step's largest displacement, except in the force
+  // evaluation that collected the candidates (its step came before); once it
+  // reaches the smallest gap, every candidate is tested at every step, as
+  // before the bound, until the next reneighbouring collects them again
+  if (cand_fresh) {
+    cand_fresh = false;
+  } else if (2.0 * cand_moved < cand_min_gap) {
+    double largest = 0.0;
+    for (int k = 0; k < 3 * n; k += 3)
+      largest = std::max(largest, disp[k] * disp[k] + disp[k + 1] * disp[k + 1] +
+                                      disp[k + 2] * disp[k + 2]);
+    cand_moved += sqrt(largest) * (1.0 + 1.0e-9);
+  }
+  if (2.0 * cand_moved < cand_min_gap) return;
+
   double **x = atom->x;
   tagint *tag = atom->tag;
 

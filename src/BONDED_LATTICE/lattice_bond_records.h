@@ -54,8 +54,12 @@ class LatticeBondRecords : protected Pointers {
   // skin, the only ones that can come into contact before the next rebuild
   void collect_candidates(NeighList *list, const LatticeRadii &radius);
   bool has_candidates() const { return !cand_i.empty(); }
-  // candidates that now overlap become contact records
-  void detect_new_contacts(const LatticeRadii &radius);
+  // candidates that now overlap become contact records; disp: this step's
+  // displacements of the n local and ghost atoms (the store's, after the
+  // forward communication), which bound how far any pair has closed since
+  // the candidates were collected: while that bound is below the smallest
+  // gap, no candidate can touch and none is tested
+  void detect_new_contacts(const LatticeRadii &radius, const double *disp, int n);
   // 2D: shear springs stored as vectors become signed lengths
   void planar_springs_from_vectors();
 
@@ -74,6 +78,9 @@ class LatticeBondRecords : protected Pointers {
   int partner_stride;  // records per atom in partner_idx (the store's capacity)
   int own_map;         // 1 if this class created the atom map
   std::vector<int> cand_i, cand_j;    // unbonded pairs that may come into contact
+  double cand_min_gap = 0.0;    // smallest gap (distance - touching distance) at collection
+  double cand_moved = 0.0;      // bound on any atom's displacement since the collection
+  bool cand_fresh = false;      // collected in this force evaluation: its step came before
 
   // records refresh_partners() could not use, judged together after its loop
   struct RecordTrouble {

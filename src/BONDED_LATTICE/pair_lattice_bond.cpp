@@ -444,7 +444,6 @@ void PairLatticeBond::compute(int eflag, int vflag)
   if (rebuilt && hetero->enabled()) hetero->share_ghosts(*this);
   if (rebuilt || convert) refresh_partners();
   if (convert) records->planar_springs_from_vectors();
-  if (records->has_candidates()) records->detect_new_contacts(radii());
 
   // each particle's displacement over this step, ghosts included; outside
   // setup (where a user may have moved atoms between runs) a step longer than
@@ -460,6 +459,10 @@ void PairLatticeBond::compute(int eflag, int vflag)
   // report_instability makes sure its message reaches the user, lattice_errors.h)
   if (runaway >= 0) time_step->report_instability(fix_store, runaway, min_radius);
   comm->forward_comm(this);
+  // unbonded pairs that came into contact in this step (after the displacements
+  // are known on the ghosts too: they bound which pairs can touch)
+  if (records->has_candidates())
+    records->detect_new_contacts(radii(), fix_store->displacements(), atom->nlocal + atom->nghost);
   if (setup) time_step->check(*this, *this);
   if (corotational())
     rotation_fit->fit(fix_store, records->partner_index(), records->stride(), *this);
