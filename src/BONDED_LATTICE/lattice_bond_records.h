@@ -54,6 +54,7 @@ class LatticeBondRecords : protected Pointers {
   // skin, the only ones that can come into contact before the next rebuild
   void collect_candidates(NeighList *list, const LatticeRadii &radius);
   bool has_candidates() const { return !cand_i.empty(); }
+  bigint candidate_count() const { return (bigint) cand_i.size(); }
   // candidates that now overlap become contact records; disp: this step's
   // displacements of the n local and ghost atoms (the store's, after the
   // forward communication), which bound how far any pair has closed since

@@ -443,6 +443,7 @@ void PairLatticeBond::compute(int eflag, int vflag)
   hetero->fetch();
   if (rebuilt && hetero->enabled()) hetero->share_ghosts(*this);
   if (rebuilt || convert) refresh_partners();
+  if (rebuilt && update->setupflag && !skin_advised) advise_on_skin();
   if (convert) records->planar_springs_from_vectors();
 
   // each particle's displacement over this step, ghosts included; outside
@@ -473,6 +474,36 @@ void PairLatticeBond::compute(int eflag, int vflag)
   // the displacements the store formed give way to the positions again
   fix_store->end_evaluation();
   if (vflag_fdotr && !virial_in_threads) virial_fdotr_compute();
+}
+
+/* ----------------------------------------------------------------------
+   once per simulation, at the first setup with candidates collected: a skin
+   much longer than this model needs gives every particle tens of unbonded
+   candidate pairs (the second and third neighbour shells) and long
+   neighbour lists.  The candidates cost nothing while the block deforms
+   elastically (detect_new_contacts), but every step once particles have
+   moved far, so the user gets the line that avoids it.  Collective
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::advise_on_skin()
+{
+  skin_advised = true;
+  const bigint local = records->candidate_count();
+  bigint total = 0;
+  MPI_Allreduce(&local, &total, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  const double d = 2.0 * min_radius;
+  const double per_particle = atom->natoms > 0 ? (double) total / (double) atom->natoms : 0.0;
+  // a skin of d/10 leaves an intact lattice with no candidates at all; warn when
+  // the skin is several times that and the particles have candidates to show for it
+  if (comm->me == 0 && d > 0.0 && neighbor->skin > 0.3 * d && per_particle >= 1.0)
+    error->warning(FLERR,
+                   "pair_style lattice/bond: the neighbor skin {:.6g} is {:.2g} particle diameters, "
+                   "so each particle has {:.1f} unbonded pairs to watch for new contacts (none "
+                   "with a skin of a tenth of a diameter in an intact lattice). They cost little "
+                   "while the particles stay close to their places, but every step once they "
+                   "have moved far, and the neighbor lists are long. For this model add: "
+                   "neighbor {:.3g} bin",
+                   neighbor->skin, neighbor->skin / d, per_particle, 0.1 * d);
 }
 
 /* ----------------------------------------------------------------------

@@ -178,6 +178,8 @@ class PairLatticeBond : public Pair, public LatticeCommCarrier, public LatticeEn
   void warn_data_file_has_no_bonds();
   void check_plane();
   void refresh_partners();
+  bool skin_advised = false;          // see advise_on_skin()
+  void advise_on_skin();
   bool corotational() const;          // the shear_frame corotational pre-pass runs this step
 
   // the force loop (pair_lattice_bond_kernel.cpp): compile-time features
