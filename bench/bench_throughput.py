@@ -210,23 +210,6 @@ region          box block -1 {n1} -1 {n1} -1 {n1}
 create_box      1 box
 region          block block 0 {n} 0 {n} 0 {n}
 create_atoms    1 region block
-set             type 1 diameter {d}
-set             type 1 mass {mass}
-pair_style      lattice/bond
-pair_coeff      1 1 {kn} {ks} {xb} {fs0} {mup}
-variable        lo equal $(bound(all,zmin))
-variable        hi equal $(bound(all,zmax))
-region          toplayer block INF INF INF INF $(v_hi-{layer}) INF units box
-region          botlayer block INF INF INF INF INF $(v_lo+{layer}) units box
-group           top region toplayer
-group           bottom region botlayer
-group           inner subtract all top bottom
-fix             up top move linear 0 0 0.05
-fix             down bottom move linear 0 0 -0.05
-fix             nve inner nve
-fix             damp inner viscous 0.05
-timestep        {dt}
-thermo          1000
 """,
     2: """
 units           si
@@ -238,26 +221,17 @@ region          box block -1 {n1} -1 {n1y} -0.5 0.5
 create_box      1 box
 region          block block 0 {n} 0 {ny} -0.5 0.5
 create_atoms    1 region block
-set             type 1 diameter {d}
-set             type 1 mass {mass}
-pair_style      lattice/bond
-pair_coeff      1 1 {kn} {ks} {xb} {fs0} {mup}
-variable        lo equal $(bound(all,ymin))
-variable        hi equal $(bound(all,ymax))
-region          toplayer block INF INF $(v_hi-{layer}) INF INF INF units box
-region          botlayer block INF INF INF $(v_lo+{layer}) INF INF units box
-group           top region toplayer
-group           bottom region botlayer
-group           inner subtract all top bottom
-fix             up top move linear 0 0.05 0
-fix             down bottom move linear 0 -0.05 0
-fix             nve inner nve
-fix             damp inner viscous 0.05
-fix             plane all enforce2d
-timestep        {dt}
-thermo          1000
 """,
 }
+# after the lattice: particles, pair style, the groups of the tuned deck (GROUPS), then
+USER_LOADING = """
+fix             up top move linear {vtop}
+fix             down bottom move linear {vbottom}
+fix             nve inner nve
+fix             damp inner viscous 0.05
+{plane}timestep        {dt}
+thermo          1000
+"""
 MODELS["lattice/bond:user-deck"] = {**MODELS["lattice/bond"], "deck": USER_DECK}
 
 FEATURE_MODELS = ["lattice/bond", "lattice/bond:frictionless", "lattice/bond:no-shear",
@@ -279,11 +253,19 @@ def build_input(name: str, cells: int, dim: int = 3, numbering: str = "rows") ->
     numbering = spec.get("numbering", numbering)
     p = PARAMS[dim]
     if "deck" in spec:    # a whole deck of its own (the user-written one)
-        a = math.sqrt(2) * D
         rows = cells / math.sqrt(3)
-        n = {3: cells - 0.1, 2: cells - 0.1}[dim]
-        return spec["deck"][dim].format(**p, a=a, d=D, n=n, n1=cells + 1, ny=rows - 0.1,
-                                        n1y=rows + 1, layer=0.25 * D)
+        ax, v = ("z", ("0 0 0.05", "0 0 -0.05")) if dim == 3 else ("y", ("0 0.05 0", "0 -0.05 0"))
+        slab = {"z": "INF INF INF INF {lo} {hi}", "y": "INF INF {lo} {hi} INF INF"}[ax]
+        return (spec["deck"][dim].format(a=math.sqrt(2) * D, d=D, n=cells - 0.1, n1=cells + 1,
+                                          ny=rows - 0.1, n1y=rows + 1)
+                + f"set             type 1 diameter {D}\nset             type 1 mass {p['mass']}\n"
+                + "pair_style      lattice/bond\n"
+                + "pair_coeff      1 1 {kn} {ks} {xb} {fs0} {mup}\n".format(**p)
+                + GROUPS.format(ax=ax, top=slab.format(lo=f"$(v_hi-{0.25 * D})", hi="INF"),
+                                bottom=slab.format(lo="INF", hi=f"$(v_lo+{0.25 * D})"))
+                + USER_LOADING.format(vtop=v[0], vbottom=v[1], dt=p["dt"],
+                                      plane="fix             plane all enforce2d\n"
+                                      if dim == 2 else ""))
     values = dict(p, xb_d=p["xb"] / D, fs0x10=10 * p["fs0"])
     parts = [spec["setup"]]
     a = math.sqrt(2) * D
