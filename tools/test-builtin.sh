@@ -6,7 +6,9 @@
 #   shared   liblammps.so with the PLUGIN package: the Python module's LAMMPS
 #   static   a static lmp without the PLUGIN package: the decks' `lmp`
 #
-# Checks, then the test suite with BONDED_LATTICE_BUILT_IN=1 (so that
+# Checks, then the test suite with BONDED_LATTICE_BUILT_IN=1
+#   - the package's sources compile against LAMMPS' serial MPI stubs (a LAMMPS built
+#     without MPI; compile only); (so that
 # tests/integration/test_plugin_loads.py expects compiled-in styles):
 #   - 400 steps of inputs/in.tension2d on 2 ranks give the same thermo output with
 #     the static and the shared built-in LAMMPS, and with the plugin in the same
@@ -37,6 +39,19 @@ static=$(tools/build-lammps-builtin.sh static | tail -1)
 [[ -x $shared/lmp && -f $shared/liblammps.so ]] || die "no shared built-in LAMMPS in '$shared'"
 [[ -x $static/lmp ]] || die "no static built-in LAMMPS in '$static'"
 say "built-in LAMMPS ready in $((SECONDS - t0)) s: $shared, $static"
+
+# the package's sources against LAMMPS' serial MPI stubs, as a LAMMPS built without MPI
+# compiles them (compile only, a few seconds): the stubs reject what MPI accepts, such as
+# a const send buffer; with the configuration header of the static build
+src_tree=$(find "$(tools/build-lammps-openmpi.sh | tail -1)/source" -mindepth 1 -maxdepth 1 -type d -name "lammps-*" | head -1)
+stubs_log=build/builtin-stubs.log
+mkdir -p build
+find src/BONDED_LATTICE -name "*.cpp" ! -name bonded_lattice_plugin.cpp -print0 \
+  | xargs -0 -P "$JOBS" -I{} g++ -std=c++17 -fsyntax-only -fopenmp -DLAMMPS_SMALLBIG \
+      -I"$static/bonded_lattice" -I"$static/bonded_lattice/OPENMP" -I"$src_tree/src" \
+      -I"$src_tree/src/OPENMP" -I"$src_tree/src/STUBS" {} > "$stubs_log" 2>&1 \
+  || { grep -m5 "error" "$stubs_log" >&2; die "the package does not compile against LAMMPS' MPI stubs (see $stubs_log)"; }
+say "the package's sources compile against LAMMPS' serial MPI stubs"
 
 # the plugin in the same LAMMPS release (the Open MPI leg's LAMMPS), for comparison
 openmpi=$(tools/build-lammps-openmpi.sh | tail -1)

@@ -488,7 +488,7 @@ void PairLatticeBond::compute(int eflag, int vflag)
 void PairLatticeBond::advise_on_skin()
 {
   skin_advised = true;
-  const bigint local = records->candidate_count();
+  bigint local = records->candidate_count();    // not const: the MPI stubs take void *
   bigint total = 0;
   MPI_Allreduce(&local, &total, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   const double d = 2.0 * min_radius;
