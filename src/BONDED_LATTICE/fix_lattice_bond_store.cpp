@@ -41,7 +41,7 @@ FixLatticeBondStore::FixLatticeBondStore(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), nmaxslot(0), ncapacity(0), nrec(nullptr), ncomp(3), spring(nullptr),
     partner(nullptr), state(nullptr), bonds_made(false), limit_step(0.0), layout(SHEAR_VECTOR),
     motion(nullptr), motion_phase(Phase::LAST_POSITIONS), measured_step(-1), measured_ok(1),
-    nmax_store(0)
+    measured_bit(1), nmax_store(0)
 {
   if (narg != 4) error->all(FLERR, "Illegal fix {} command: expected one argument (maxslot)", style);
   nmaxslot = utils::inumeric(FLERR, arg[3], false, lmp);
@@ -117,15 +117,42 @@ void FixLatticeBondStore::wrong_phase(const char *action) const
 }
 
 /* ----------------------------------------------------------------------
-   fix lattice/nve moves every atom this step and measures the displacements
-   into motion as it goes (new - old position)
+   fix lattice/nve moves the atoms of its group this step and measures their
+   displacements into motion as it goes (new - old position); the other
+   atoms' triples keep their last positions
 ------------------------------------------------------------------------- */
 
-double *FixLatticeBondStore::begin_measured_step()
+double *FixLatticeBondStore::begin_measured_step(int groupbit)
 {
+  // one measuring fix per step (fix lattice/nve measures only when no other
+  // fix moves its atoms, and two fixes lattice/nve move each other's atoms)
+  if (motion_phase == Phase::MEASURED_STEP && measured_step == update->ntimestep)
+    error->one(FLERR, "fix {}: internal error at step {}: a second measuring drift in one step "
+               "(fix_lattice_bond_store.h)", style, update->ntimestep);
+  // a group that changed since the last measured step: its atoms that left
+  // it hold this step's old displacement, not a last position
+  if (motion_phase == Phase::MEASURED_STEP && groupbit != measured_bit)
+    error->one(FLERR, "fix {}: internal error at step {}: the measured group changed within a run "
+               "(fix_lattice_bond_store.h)", style, update->ntimestep);
   move({Phase::LAST_POSITIONS, Phase::MEASURED_STEP}, Phase::MEASURING,
        "fix lattice/nve's measuring drift (begin_measured_step)");
+  measured_bit = groupbit;
   return motion;
+}
+
+/* ----------------------------------------------------------------------
+   whether atom i's triple is its position at the last force evaluation
+------------------------------------------------------------------------- */
+
+bool FixLatticeBondStore::holds_last_position(int i) const
+{
+  switch (motion_phase) {
+    case Phase::LAST_POSITIONS: return true;
+    case Phase::PASS_STEP: return false;
+    case Phase::MEASURING:
+    case Phase::MEASURED_STEP: return measured_some() && !(atom->mask[i] & measured_bit);
+  }
+  return false;
 }
 
 void FixLatticeBondStore::end_measured_step(bool ok)
@@ -175,6 +202,7 @@ void FixLatticeBondStore::end_evaluation()
     positions_to_motion();
   } else {
     move({Phase::MEASURED_STEP}, Phase::MEASURED_STEP, "the end of the force evaluation (end_evaluation)");
+    if (measured_some()) unmeasured_to_positions();
   }
   for (int k = 0; k < 6; k++) h_eval[k] = domain->h[k];
 }
@@ -374,9 +402,13 @@ int FixLatticeBondStore::update_displacements(double limit)
 {
   const int nlocal = atom->nlocal;
   form_box_step();
-  // already measured by the integrator this step: only the test is left
-  if (motion_phase == Phase::MEASURED_STEP && measured_step == update->ntimestep)
-    return (nlocal == 0 || limit <= 0.0 || measured_ok) ? -1 : first_beyond(limit, domain->dimension);
+  // already measured by the integrator this step: only the test is left, and
+  // the steps of the atoms it does not move
+  if (motion_phase == Phase::MEASURED_STEP && measured_step == update->ntimestep) {
+    const bool ok = !measured_some() || unmeasured_steps(limit);
+    return (nlocal == 0 || limit <= 0.0 || (measured_ok && ok)) ? -1
+                                                                : first_beyond(limit, domain->dimension);
+  }
   move({Phase::LAST_POSITIONS}, Phase::PASS_STEP, "forming the step's displacements (update_displacements)");
   if (nlocal == 0) return -1;
   if (domain->triclinic) {
@@ -420,6 +452,47 @@ template <int DIM> int FixLatticeBondStore::orthogonal_steps(double limit)
     }
   if (limit <= 0.0 || ok) return -1;
   return first_beyond(limit, DIM);
+}
+
+/* ----------------------------------------------------------------------
+   fix lattice/nve measured the atoms of its group: the others' steps from
+   their last positions, with the arithmetic of the pass (a periodic jump
+   removed as orthogonal_steps and the triclinic branch do); 2D steps have
+   no z part
+------------------------------------------------------------------------- */
+
+bool FixLatticeBondStore::unmeasured_steps(double limit)
+{
+  const int nlocal = atom->nlocal, dim = domain->dimension;
+  const int *const mask = atom->mask;
+  const double *const x = atom->x[0];
+  int ok = 1;
+  for (int i = 0; i < nlocal; i++) {
+    if (mask[i] & measured_bit) continue;
+    double *m = motion + 3 * i;
+    double step[3] = {x[3 * i] - m[0], x[3 * i + 1] - m[1], (dim == 3) ? x[3 * i + 2] - m[2] : 0.0};
+    lattice_unwrap_step(domain, step);
+    for (int k = 0; k < 3; k++) {
+      m[k] = step[k];
+      if (k < dim) ok &= (std::fabs(step[k]) <= limit);    // false for NaN too
+    }
+  }
+  return ok || limit <= 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   after a measured step's force evaluation: the atoms outside the measured
+   group hold their positions again (2D: x and y, z stays 0)
+------------------------------------------------------------------------- */
+
+void FixLatticeBondStore::unmeasured_to_positions()
+{
+  const int nlocal = atom->nlocal, dim = domain->dimension;
+  const int *const mask = atom->mask;
+  const double *const x = atom->x[0];
+  for (int i = 0; i < nlocal; i++)
+    if (!(mask[i] & measured_bit))
+      for (int k = 0; k < dim; k++) motion[3 * i + k] = x[3 * i + k];
 }
 
 /* ----------------------------------------------------------------------
@@ -475,8 +548,8 @@ void FixLatticeBondStore::set_arrays(int i)
 {
   nrec[i] = 0;
   const int dim = domain->dimension;
-  for (int k = 0; k < 3; k++)
-    motion[3 * i + k] = (motion_is_displacement() || k >= dim) ? 0.0 : atom->x[i][k];
+  const bool position = holds_last_position(i);
+  for (int k = 0; k < 3; k++) motion[3 * i + k] = (!position || k >= dim) ? 0.0 : atom->x[i][k];
 }
 
 /* ----------------------------------------------------------------------

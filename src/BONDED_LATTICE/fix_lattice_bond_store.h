@@ -135,7 +135,12 @@ class FixLatticeBondStore : public Fix {
   // force evaluation the triple keeps that evaluation's displacements until the
   // next drift, and forming displacements from them is an error); a drift that
   // follows a drift with no force evaluation between (pair_modify compute no)
-  // measures again.  All ranks move together (every move is part of a step)
+  // measures again.  All ranks move together (every move is part of a step).
+  // A fix lattice/nve of a group other than all measures its group's atoms
+  // only (measured_bit); the triples of the other atoms (platens moved by fix
+  // move, atoms no fix moves) hold their last positions in MEASURING and
+  // MEASURED_STEP too, update_displacements() forms their steps from x and
+  // end_evaluation() sets them to x again (holds_last_position())
   enum class Phase { LAST_POSITIONS, PASS_STEP, MEASURING, MEASURED_STEP };
   Phase phase() const { return motion_phase; }
   static const char *phase_name(Phase p);
@@ -160,8 +165,12 @@ class FixLatticeBondStore : public Fix {
   // fix lattice/nve, integrating every atom: the triples to fill with this
   // step's displacements (new - old position, 3 per atom) while it moves the
   // atoms; then end_measured_step, ok: none longer than step_limit() (nor NaN)
-  double *begin_measured_step();
+  // groupbit: the group the fix moves (1: all); the triples of atoms outside it
+  // keep their last positions
+  double *begin_measured_step(int groupbit);
   void end_measured_step(bool ok);
+  // whether atom i's triple holds its last position (not a displacement) now
+  bool holds_last_position(int i) const;
   // the displacements over the step (3 per atom, ghosts by forward comm of the
   // pair style): the array itself, for the force loop.  Only in the phases
   // PASS_STEP and MEASURED_STEP (internal error otherwise)
@@ -213,6 +222,8 @@ class FixLatticeBondStore : public Fix {
   Phase motion_phase;
   bigint measured_step;    // the step whose displacements fix lattice/nve measured, or -1
   int measured_ok;         // and whether none of them was longer than step_limit
+  int measured_bit;        // the group bit of the atoms measured (1: every atom)
+  bool measured_some() const { return measured_bit != 1; }
   // `action` moves the phase to `to`: an internal error unless the phase is one of `from`
   void move(std::initializer_list<Phase> from, Phase to, const char *action);
   [[noreturn]] void wrong_phase(const char *action) const;    // action needs displacements
@@ -233,6 +244,10 @@ class FixLatticeBondStore : public Fix {
   void replace_records(double *, tagint *, LatticeBondState *);
   template <int DIM> int orthogonal_steps(double limit);
   int first_beyond(double limit, int dim) const;
+  // steps of the atoms outside measured_bit (x - last position), as the pass
+  // forms them; false if one exceeds limit > 0
+  bool unmeasured_steps(double limit);
+  void unmeasured_to_positions();
   // record count, the given triple, the records
   int pack_atom(int, double *, const double *triple) const;
   int unpack_atom(int, const double *);

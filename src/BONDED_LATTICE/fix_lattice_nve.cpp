@@ -18,6 +18,7 @@
 #include "error.h"
 #include "fix_lattice_bond_store.h"
 #include "force.h"
+#include "group.h"
 #include "modify.h"
 #include "pair_lattice_bond.h"
 #include "update.h"
@@ -59,34 +60,53 @@ void FixLatticeNVE::init()
                "(atom_style sphere) or the mass command");
   reset_dt();
   store = measuring_store();
-  if (store && comm->me == 0)
-    utils::logmesg(lmp, "fix lattice/nve: moves every atom and measures the steps for "
-                   "pair_style lattice/bond (no separate displacement pass)\n");
+  if (store && comm->me == 0) {
+    if (igroup == 0)
+      utils::logmesg(lmp, "fix {}: moves every atom and measures the steps for pair_style "
+                     "lattice/bond (no separate displacement pass)\n", style);
+    else
+      utils::logmesg(lmp, "fix {}: measures the steps of group {} for pair_style lattice/bond; "
+                     "the steps of the other atoms follow from their positions\n", style,
+                     group->names[igroup]);
+  }
 }
 
 /* ----------------------------------------------------------------------
-   the record store of pair_style lattice/bond if this fix may measure each
-   atom's displacement over the step while it moves it, else nullptr.  The
-   store's own pass (x - last position) then has nothing left to do.  Only
-   when this fix moves every atom and nothing else moves any between two
-   force evaluations: no other integrator or position-changing fix
-   (initial/post-integrate hooks), no box deformation remapping atoms, and
-   no fix acting before atoms migrate other than those known to leave the
-   positions of existing atoms alone (Monte Carlo moves happen there)
+   the record store of pair_style lattice/bond if this fix may measure the
+   displacement over the step of each atom of its group while it moves it,
+   else nullptr.  The store's own pass (x - last position) then has only the
+   atoms outside the group left (platens moved by fix move, atoms at rest),
+   or nothing for the group all.  Only when nothing else moves an atom of
+   the group between two force evaluations: no other integrator or
+   position-changing fix (initial/post-integrate hooks) acting on one of its
+   atoms, no other fix lattice/nve (the store keeps one measured group), no
+   box deformation remapping atoms, no fix acting before atoms migrate other
+   than those known to leave the positions of existing atoms alone (Monte
+   Carlo moves happen there), and no dynamic group (its atoms change
+   between steps).  Collective: the groups' overlap is counted over all ranks
 ------------------------------------------------------------------------- */
 
 FixLatticeBondStore *FixLatticeNVE::measuring_store() const
 {
-  if (igroup != 0) return nullptr;
   auto *pair = PairLatticeBond::find(force);
-  if (!pair || !pair->store()) return nullptr;
+  if (!pair || !pair->store() || group->dynamic[igroup]) return nullptr;
+  const int nlocal = atom->nlocal;
+  const int *const amask = atom->mask;
   for (int i = 0; i < modify->nfix; i++) {
     const Fix *other = modify->fix[i];
     if (other == this) continue;
     const int mask = modify->fmask[i];
-    if ((mask & (INITIAL_INTEGRATE | POST_INTEGRATE)) || other->box_change) return nullptr;
+    if (other->box_change || dynamic_cast<const FixLatticeNVE *>(other)) return nullptr;
     if ((mask & PRE_EXCHANGE) && !utils::strmatch(other->style, "^(balance|deposit|pour|evaporate)$"))
       return nullptr;
+    if (!(mask & (INITIAL_INTEGRATE | POST_INTEGRATE))) continue;
+    // another fix that may move atoms: only on atoms outside this group
+    if (group->dynamic[other->igroup]) return nullptr;
+    const int both = groupbit | other->groupbit;
+    bigint shared = 0, shared_all = 0;
+    for (int j = 0; j < nlocal; j++) shared += ((amask[j] & both) == both);
+    MPI_Allreduce(&shared, &shared_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+    if (shared_all > 0) return nullptr;
   }
   return pair->store();
 }
@@ -135,8 +155,13 @@ void FixLatticeNVE::dispatch(bool drift)
     loop = drift ? (store ? &FixLatticeNVE::stream<true, true> : &FixLatticeNVE::stream<true, false>)
                  : &FixLatticeNVE::stream<false, false>;
   } else if (measure) {
-    if (planar) loop = rmass ? &FixLatticeNVE::drift_measured<true, true> : &FixLatticeNVE::drift_measured<true, false>;
-    else loop = rmass ? &FixLatticeNVE::drift_measured<false, true> : &FixLatticeNVE::drift_measured<false, false>;
+    // 2D or 3D, group all or not, per-atom or per-type mass
+    static constexpr RangeFn MEASURED[8] = {
+        &FixLatticeNVE::drift_measured<false, false, false>, &FixLatticeNVE::drift_measured<false, false, true>,
+        &FixLatticeNVE::drift_measured<false, true, false>,  &FixLatticeNVE::drift_measured<false, true, true>,
+        &FixLatticeNVE::drift_measured<true, false, false>,  &FixLatticeNVE::drift_measured<true, false, true>,
+        &FixLatticeNVE::drift_measured<true, true, false>,   &FixLatticeNVE::drift_measured<true, true, true>};
+    loop = MEASURED[4 * planar + 2 * all + rmass];
   } else {
     // one compiled loop per case: 2D or 3D, group all or not, per-atom or
     // per-type mass, with or without the drift
@@ -154,7 +179,7 @@ void FixLatticeNVE::dispatch(bool drift)
   }
   Measure m;
   if (measure) {
-    m.disp = store->begin_measured_step();
+    m.disp = store->begin_measured_step(groupbit);
     m.cap = step_cap();
   }
   const bool ok = run_ranges(loop, n, m);
@@ -247,14 +272,16 @@ bool FixLatticeNVE::kick(int begin, int end, const Measure &)
 }
 
 /* ----------------------------------------------------------------------
-   the drift half of the step for every atom, measuring each displacement for
-   the record store: new - old position (the same operation, so the same
-   bits, as the store's x - last position).  The old positions are not kept:
-   the step's force evaluation is the next one that needs a last position,
-   and after it that is the current one
+   the drift half of the step for every atom of the group (ALL: every atom,
+   no mask test), measuring each displacement for the record store: new - old
+   position (the same operation, so the same bits, as the store's x - last
+   position).  The old positions are not kept: the step's force evaluation
+   is the next one that needs a last position, and after it that is the
+   current one.  The triples of atoms outside the group are left alone: they
+   hold those atoms' last positions (FixLatticeBondStore::begin_measured_step)
 ------------------------------------------------------------------------- */
 
-template <bool PLANAR, bool RMASS>
+template <bool PLANAR, bool ALL, bool RMASS>
 bool FixLatticeNVE::drift_measured(int begin, int end, const Measure &m)
 {
   constexpr int DIM = PLANAR ? 2 : 3;
@@ -266,9 +293,11 @@ bool FixLatticeNVE::drift_measured(int begin, int end, const Measure &m)
   const double *const dtfm_of = dtfm_type.data();
   const double dt = dtv;    // a local: the stores to x and v cannot change it
   const int *const type = atom->type;
+  const int *const mask = atom->mask;
   const double cap = m.cap;
   int ok = 1;
   for (int i = begin; i < end; i++) {
+    if (!ALL && !(mask[i] & groupbit)) continue;
     const double dtfm = RMASS ? dtf / rmass[i] : dtfm_of[type[i]];
     for (int k = 3 * i; k < 3 * i + DIM; k++) {
       v[k] += dtfm * f[k];

@@ -53,7 +53,7 @@ class FixLatticeNVE : public Fix {
   // the record store whose displacements the drift measures (see measuring_store)
   class FixLatticeBondStore *store;
   class FixLatticeBondStore *measuring_store() const;
-  template <bool PLANAR, bool RMASS> bool drift_measured(int, int, const Measure &);
+  template <bool PLANAR, bool ALL, bool RMASS> bool drift_measured(int, int, const Measure &);
   template <bool DRIFT, bool MEASURE> bool stream(int, int, const Measure &);
   double step_cap() const;    // longest step that is not an instability
 };
