@@ -21,6 +21,7 @@
 #include "fix_lattice_atom_history.h"
 #include "lattice_errors.h"
 #include "memory.h"
+#include "neighbor.h"
 #include "update.h"
 
 #include <algorithm>
@@ -463,12 +464,11 @@ template <int DIM> int FixLatticeBondStore::orthogonal_steps(double limit)
 
 bool FixLatticeBondStore::unmeasured_steps(double limit)
 {
-  const int nlocal = atom->nlocal, dim = domain->dimension;
-  const int *const mask = atom->mask;
+  if (neighbor->ago == 0 || atom->nlocal != unmeasured_nlocal) list_unmeasured();
+  const int dim = domain->dimension;
   const double *const x = atom->x[0];
   int ok = 1;
-  for (int i = 0; i < nlocal; i++) {
-    if (mask[i] & measured_bit) continue;
+  for (const int i : unmeasured) {
     double *m = motion + 3 * i;
     double step[3] = {x[3 * i] - m[0], x[3 * i + 1] - m[1], (dim == 3) ? x[3 * i + 2] - m[2] : 0.0};
     lattice_unwrap_step(domain, step);
@@ -487,12 +487,23 @@ bool FixLatticeBondStore::unmeasured_steps(double limit)
 
 void FixLatticeBondStore::unmeasured_to_positions()
 {
-  const int nlocal = atom->nlocal, dim = domain->dimension;
-  const int *const mask = atom->mask;
+  // (the list of this step's unmeasured_steps: nothing reorders atoms in between)
+  const int dim = domain->dimension;
   const double *const x = atom->x[0];
+  for (const int i : unmeasured)
+    for (int k = 0; k < dim; k++) motion[3 * i + k] = x[3 * i + k];
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLatticeBondStore::list_unmeasured()
+{
+  const int nlocal = atom->nlocal;
+  const int *const mask = atom->mask;
+  unmeasured.clear();
   for (int i = 0; i < nlocal; i++)
-    if (!(mask[i] & measured_bit))
-      for (int k = 0; k < dim; k++) motion[3 * i + k] = x[3 * i + k];
+    if (!(mask[i] & measured_bit)) unmeasured.push_back(i);
+  unmeasured_nlocal = nlocal;
 }
 
 /* ----------------------------------------------------------------------

@@ -15,6 +15,7 @@ FixStyle(LATTICE/BOND/STORE,FixLatticeBondStore);
 #include "fix.h"
 
 #include <initializer_list>
+#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -224,6 +225,12 @@ class FixLatticeBondStore : public Fix {
   int measured_ok;         // and whether none of them was longer than step_limit
   int measured_bit;        // the group bit of the atoms measured (1: every atom)
   bool measured_some() const { return measured_bit != 1; }
+  // the local atoms outside measured_bit, listed when atoms were last
+  // reordered (atoms migrate, are sorted or created only when neighbour
+  // lists are rebuilt), so that their passes do not visit every atom
+  std::vector<int> unmeasured;
+  int unmeasured_nlocal = -1;
+  void list_unmeasured();
   // `action` moves the phase to `to`: an internal error unless the phase is one of `from`
   void move(std::initializer_list<Phase> from, Phase to, const char *action);
   [[noreturn]] void wrong_phase(const char *action) const;    // action needs displacements

@@ -254,10 +254,11 @@ bool FixLatticeNVE::kick(int begin, int end, const Measure &)
   const double dt = dtv;    // a local: the stores to x and v cannot change it
   const int *const type = atom->type;
   const int *const mask = atom->mask;
+  MassQuotient quotient{dtf};
 
   for (int i = begin; i < end; i++) {
     if (!ALL && !(mask[i] & groupbit)) continue;
-    const double dtfm = RMASS ? dtf / rmass[i] : dtfm_of[type[i]];
+    const double dtfm = RMASS ? quotient.of(rmass[i]) : dtfm_of[type[i]];
     const int k = 3 * i;
     v[k] += dtfm * f[k];
     v[k + 1] += dtfm * f[k + 1];
@@ -294,11 +295,12 @@ bool FixLatticeNVE::drift_measured(int begin, int end, const Measure &m)
   const double dt = dtv;    // a local: the stores to x and v cannot change it
   const int *const type = atom->type;
   const int *const mask = atom->mask;
+  MassQuotient quotient{dtf};
   const double cap = m.cap;
   int ok = 1;
   for (int i = begin; i < end; i++) {
     if (!ALL && !(mask[i] & groupbit)) continue;
-    const double dtfm = RMASS ? dtf / rmass[i] : dtfm_of[type[i]];
+    const double dtfm = RMASS ? quotient.of(rmass[i]) : dtfm_of[type[i]];
     for (int k = 3 * i; k < 3 * i + DIM; k++) {
       v[k] += dtfm * f[k];
       const double old = x[k];

@@ -15,6 +15,7 @@ FixStyle(lattice/nve,FixLatticeNVE);
 
 #include "fix.h"
 
+#include <limits>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -34,6 +35,23 @@ class FixLatticeNVE : public Fix {
   // forms per atom, formed once per run instead of once per atom and step
   std::vector<double> dtfm_type;
   bool one_mass = false;    // per-type masses, all equal
+
+  // dt/2 / m of per-atom masses: the quotient fix nve forms per atom, formed
+  // again only when the mass differs from the last atom's (the same bits; a
+  // block of equal particles divides once per loop instead of once per atom)
+  struct MassQuotient {
+    double dtf;
+    double mass = std::numeric_limits<double>::quiet_NaN();    // equal to no mass
+    double quotient = 0.0;
+    double of(double m)
+    {
+      if (!(m == mass)) {
+        mass = m;
+        quotient = dtf / m;
+      }
+      return quotient;
+    }
+  };
 
   // the steps' measurement for the record store (drift with a measuring store)
   struct Measure {

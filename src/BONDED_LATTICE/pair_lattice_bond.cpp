@@ -23,6 +23,7 @@
 #include "error.h"
 #include "fix_lattice_bond_store.h"
 #include "force.h"
+#include "group.h"
 #include "lammps_api_compat.h"
 #include "lattice_bond_records.h"
 #include "lattice_heterogeneity.h"
@@ -36,6 +37,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
+#include <vector>
 
 using namespace LAMMPS_NS;
 
@@ -444,6 +447,7 @@ void PairLatticeBond::compute(int eflag, int vflag)
   if (rebuilt && hetero->enabled()) hetero->share_ghosts(*this);
   if (rebuilt || convert) refresh_partners();
   if (rebuilt && update->setupflag && !skin_advised) advise_on_skin();
+  if (update->setupflag && !fixes_advised) advise_on_fixes();
   if (convert) records->planar_springs_from_vectors();
 
   // each particle's displacement over this step, ghosts included; outside
@@ -504,6 +508,47 @@ void PairLatticeBond::advise_on_skin()
                    "have moved far, and the neighbor lists are long. For this model add: "
                    "neighbor {:.3g} bin",
                    neighbor->skin, neighbor->skin / d, per_particle, 0.1 * d);
+}
+
+/* ----------------------------------------------------------------------
+   once per simulation, at the first setup: LAMMPS' general fixes nve (with
+   fix enforce2d in 2D) and viscous do what the package's fix lattice/nve and
+   fix lattice/viscous do with the same arithmetic, in more passes over the
+   atoms (fix nve integrates z too, enforce2d then zeroes it, and the record
+   store forms each step's displacements in a pass of its own, which fix
+   lattice/nve measures while it moves the atoms): the user gets the lines
+   that replace them (docs/performance.md, "Decks users write")
+------------------------------------------------------------------------- */
+
+void PairLatticeBond::advise_on_fixes()
+{
+  fixes_advised = true;
+  if (comm->me != 0) return;
+  // 2D: the fix enforce2d that fix nve needs and fix lattice/nve does not
+  std::string plane;
+  if (domain->dimension == 2)
+    for (const Fix *fix : modify->get_fix_list())
+      if (utils::strmatch(fix->style, "^enforce2d")) plane = fix->id;
+  std::string use;
+  for (const Fix *fix : modify->get_fix_list()) {
+    const std::string style = fix->style, group_name = group->names[fix->igroup];
+    std::string line;
+    if (style == "nve")
+      line = fmt::format("'fix {} {} lattice/nve' (the same integration arithmetic{})", fix->id,
+                         group_name, plane.empty() ? "" : fmt::format("; it integrates x and y "
+                         "only, so fix {} has nothing left to do for its atoms", plane));
+    else if (style == "viscous")
+      line = fmt::format("'fix {} {} lattice/viscous' with the same gamma (one value for every "
+                         "type)", fix->id, group_name);
+    if (!line.empty()) use += (use.empty() ? "" : ", ") + line;
+  }
+  if (use.empty()) return;
+  error->warning(FLERR,
+                 "pair_style lattice/bond: fix nve and fix viscous move and damp these particles "
+                 "as fix lattice/nve and fix lattice/viscous do, with the same arithmetic but "
+                 "more passes over the atoms each step; fix lattice/nve also measures the steps "
+                 "the force loop needs (docs/performance.md, \"Decks users write\"). For this "
+                 "model use: {}", use);
 }
 
 /* ----------------------------------------------------------------------

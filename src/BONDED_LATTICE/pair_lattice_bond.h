@@ -180,6 +180,8 @@ class PairLatticeBond : public Pair, public LatticeCommCarrier, public LatticeEn
   void refresh_partners();
   bool skin_advised = false;          // see advise_on_skin()
   void advise_on_skin();
+  bool fixes_advised = false;        // see advise_on_fixes()
+  void advise_on_fixes();
   bool corotational() const;          // the shear_frame corotational pre-pass runs this step
 
   // the force loop (pair_lattice_bond_kernel.cpp): compile-time features

@@ -15,7 +15,8 @@ from helpers.materials import D, WEAK_SHEAR, coeffs
 COEFFS = {dim: "* * " + coeffs(WEAK_SHEAR[dim]) for dim in (2, 3)}
 
 
-def run_scene(dim: int, integrator: str, group: str, steps: int = 800) -> tuple[np.ndarray, list]:
+def run_scene(dim: int, integrator: str, group: str, steps: int = 800,
+              extra: str = "") -> tuple[np.ndarray, list]:
     from lammps import lammps
 
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
@@ -24,6 +25,7 @@ def run_scene(dim: int, integrator: str, group: str, steps: int = 800) -> tuple[
 pair_style      lattice/bond
 pair_coeff      {COEFFS[dim]}
 neighbor        {0.1 * D} bin
+{extra}
 {SHAKE.format(v=0.3, rate=300.0, mid=3 * D, vz='v_vz' if dim == 3 else 'NULL')}
 compute         b all lattice/bonds
 thermo          {steps}
@@ -54,6 +56,20 @@ def test_same_trajectory_as_fix_nve(dim, group):
     assert np.array_equal(ours, ref), np.max(np.abs(ours - ref))
     if dim == 2:
         assert np.all(ours[:, 2] == 0.0) and np.all(ours[:, 5] == 0.0)    # z and vz untouched
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("group", ["all", "half"])
+def test_per_atom_masses_match_fix_nve(dim, group):
+    """Per-atom masses (atom_style sphere) that change from one atom to the next (three
+    values in turn by ID, and the sort reorders them): the quotient dt/2m that the fix
+    forms again only when the mass changes must be fix nve's for every atom."""
+    masses = ("variable        m atom mass*(1+0.25*(id%3))\n"
+              "set             atom * mass v_m\n")
+    ref, c_ref = run_scene(dim, "nve", group, extra=masses)
+    ours, c_ours = run_scene(dim, "lattice/nve", group, extra=masses)
+    assert c_ref[1] > 0 and c_ours == c_ref, (c_ref, c_ours)
+    assert np.array_equal(ours, ref), np.max(np.abs(ours - ref))
 
 
 def test_per_type_mass_matches_fix_nve(lmp_instance):
