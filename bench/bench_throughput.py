@@ -233,6 +233,17 @@ fix             damp inner viscous 0.05
 thermo          1000
 """
 MODELS["lattice/bond:user-deck"] = {**MODELS["lattice/bond"], "deck": USER_DECK}
+# The same deck after the user has followed the pair style's two warnings at its first run
+# (tests/integration/test_fix_advice.py, test_skin_advice.py): the skin it names, fix
+# lattice/nve for fix nve (no fix enforce2d in 2D), fix lattice/viscous with the same gamma.
+# Everything else stays as the user wrote it: atom_style sphere, the conventional cells'
+# numbering, LAMMPS' default bins and sorting, the platens by fix move.
+USER_LOADING_ADVISED = (USER_LOADING.replace("inner nve", "inner lattice/nve")
+                        .replace("inner viscous", "inner lattice/viscous")
+                        .replace("{plane}timestep", f"neighbor        {0.1 * D} bin\ntimestep"))
+assert USER_LOADING_ADVISED.count("lattice/") == 2 and "{plane}" not in USER_LOADING_ADVISED
+MODELS["lattice/bond:user-deck-advised"] = {**MODELS["lattice/bond:user-deck"],
+                                            "loading": USER_LOADING_ADVISED}
 
 FEATURE_MODELS = ["lattice/bond", "lattice/bond:frictionless", "lattice/bond:no-shear",
                   "lattice/bond:two-types", "lattice/bond+energy", "lattice/bond:corotational",
@@ -263,9 +274,9 @@ def build_input(name: str, cells: int, dim: int = 3, numbering: str = "rows") ->
                 + "pair_coeff      1 1 {kn} {ks} {xb} {fs0} {mup}\n".format(**p)
                 + GROUPS.format(ax=ax, top=slab.format(lo=f"$(v_hi-{0.25 * D})", hi="INF"),
                                 bottom=slab.format(lo="INF", hi=f"$(v_lo+{0.25 * D})"))
-                + USER_LOADING.format(vtop=v[0], vbottom=v[1], dt=p["dt"],
-                                      plane="fix             plane all enforce2d\n"
-                                      if dim == 2 else ""))
+                + spec.get("loading", USER_LOADING).format(
+                    vtop=v[0], vbottom=v[1], dt=p["dt"],
+                    plane="fix             plane all enforce2d\n" if dim == 2 else ""))
     values = dict(p, xb_d=p["xb"] / D, fs0x10=10 * p["fs0"])
     parts = [spec["setup"]]
     a = math.sqrt(2) * D

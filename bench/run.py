@@ -2,7 +2,8 @@
 
 The tuned deck (as bonded-lattice writes it) and a deck written as a user would
 (bench_throughput.USER_DECK: atom_style sphere, fix nve, LAMMPS' default neighbour
-settings, platens by fix move) run side by side.
+settings, platens by fix move) run side by side, and the user's deck once more with the
+lines the pair style's warnings name (the skin, fix lattice/nve, fix lattice/viscous).
 
 The canonical problem of bench/bench_throughput.py (uniaxial tension of a bonded 3D
 fcc block, quartzite parameters, d = 1 mm, dt = 1e-8 s, viscous damping; in 2D the
@@ -36,9 +37,11 @@ HERE = Path(__file__).resolve().parent
 # with the time steps per size (fewer for the large blocks: the BPM peers are slow)
 SIZES = {3: {"quick": [(14, 1000)], "full": [(14, 1000), (23, 400), (37, 100)]},
          2: {"quick": [(105, 1000)], "full": [(105, 1000), (235, 400), (470, 100)]}}
-MODELS = ["lattice/bond", "bpm/spring", "bpm/rotational", "lattice/bond:user-deck"]
-# the deck as a user writes it (bench_throughput.USER_DECK): measured next to the tuned one
-USER = "lattice/bond:user-deck"
+MODELS = ["lattice/bond", "bpm/spring", "bpm/rotational", "lattice/bond:user-deck",
+          "lattice/bond:user-deck-advised"]
+# the deck as a user writes it (bench_throughput.USER_DECK), and the same deck with the
+# lines the pair style's warnings name: measured next to the tuned one
+USERS = {"written": "lattice/bond:user-deck", "advised": "lattice/bond:user-deck-advised"}
 # lattice/bond variants whose memory differs: the particles numbered by create_atoms'
 # conventional cells instead of row by row (one more record slot per particle), and
 # atom_style sphere (per-atom radius, mass, angular velocity, torque)
@@ -85,10 +88,11 @@ def main() -> None:
                 rates = {m: statistics.median(run[m]["rate"] for run in runs) for m in MODELS}
                 ratios = {m: statistics.median(run["lattice/bond"]["rate"] / run[m]["rate"]
                                                for run in runs) for m in MODELS}
-                # the user-written deck against the tuned one and against bpm/spring
-                user = {peer: statistics.median(run[USER]["rate"] / run[peer]["rate"]
-                                                for run in runs)
-                        for peer in ("lattice/bond", "bpm/spring")}
+                # the user-written deck (as written, and advised) against the tuned one
+                # and against bpm/spring
+                user = {(deck, peer): statistics.median(run[model]["rate"] / run[peer]["rate"]
+                                                        for run in runs)
+                        for deck, model in USERS.items() for peer in ("lattice/bond", "bpm/spring")}
                 particles = runs[0]["lattice/bond"]["particles"]
                 rows.append(dict(dim=dim, particles=particles, ranks=ranks, cells=cells,
                                  rates=rates, ratios=ratios, user=user))
@@ -96,8 +100,9 @@ def main() -> None:
                       + ", ".join(f"{m} {rates[m]:.3g}" for m in MODELS)
                       + " particle-steps/s; lattice/bond is "
                       + ", ".join(f"{ratios[m]:.2f}x {m}" for m in MODELS[1:3])
-                      + f"; the user-written deck is {user['lattice/bond']:.2f}x the tuned deck,"
-                      + f" {user['bpm/spring']:.2f}x bpm/spring"
+                      + "".join(f"; the user-written deck {deck} is "
+                                f"{user[deck, 'lattice/bond']:.2f}x the tuned deck, "
+                                f"{user[deck, 'bpm/spring']:.2f}x bpm/spring" for deck in USERS)
                       + (f" (median of {args.repeat})" if args.repeat > 1 else ""),
                       flush=True)
 
@@ -132,8 +137,9 @@ def main() -> None:
           f"{f' --repeat {args.repeat}' if args.repeat > 1 else ''}`\n")
     print("| dim | particles | ranks | lattice/bond (particle-steps/s) | vs bpm/spring "
           "| vs bpm/rotational | two-rank efficiency | user-written deck vs tuned "
-          "| user-written deck vs bpm/spring |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "| user-written deck vs bpm/spring | advised user deck vs tuned "
+          "| advised user deck vs bpm/spring |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for row in rows:
         rates = row["rates"]
         ref = rates["lattice/bond"]
@@ -144,7 +150,8 @@ def main() -> None:
             eff = f"{ref / (2 * one['rates']['lattice/bond']):.2f}"
         print(f"| {row['dim']}D | {row['particles']} | {row['ranks']} | {ref:.3g} | "
               f"{row['ratios']['bpm/spring']:.2f} | {row['ratios']['bpm/rotational']:.1f} | {eff} | "
-              f"{row['user']['lattice/bond']:.2f} | {row['user']['bpm/spring']:.2f} |")
+              + " | ".join(f"{row['user'][deck, peer]:.2f}" for deck in USERS
+                           for peer in ("lattice/bond", "bpm/spring")) + " |")
     if memory:
         print("\n| dim | particles | model | peak memory (bytes/particle, 1 rank) |")
         print("|---|---|---|---|")

@@ -546,8 +546,9 @@ void PairLatticeBond::advise_on_fixes()
   error->warning(FLERR,
                  "pair_style lattice/bond: fix nve and fix viscous move and damp these particles "
                  "as fix lattice/nve and fix lattice/viscous do, with the same arithmetic but "
-                 "more passes over the atoms each step; fix lattice/nve also measures the steps "
-                 "the force loop needs (docs/performance.md, \"Decks users write\"). For this "
+                 "more passes over the atoms each step; fix lattice/nve also keeps the "
+                 "displacements the force loop needs as it moves the atoms (docs/performance.md, "
+                 "\"Decks users write\"). For this "
                  "model use: {}", use);
 }
 

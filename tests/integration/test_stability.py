@@ -19,7 +19,7 @@ DECK = block_2d_deck("-2 14 -2 12", "0 10 0 8", coeffs=QUARTZ_2D) + """
 variable        vx atom 0.01*normal(0,1,8411)
 variable        vy atom 0.01*normal(0,1,2203)
 velocity        all set v_vx v_vy NULL units box
-fix             nve all nve
+fix             nve all lattice/nve
 thermo_style    custom step ke pe
 thermo          100
 timestep        ${dt}

@@ -342,7 +342,7 @@ neighbor        1.0e-4 bin
 region          toplayer block INF INF 3.2 INF INF INF
 group           top region toplayer
 group           inner subtract all top
-fix             integrate inner nve
+fix             integrate inner lattice/nve
 {fixes}
 compute         e all lattice/energy{work}
 thermo_style    custom step c_e[10]
