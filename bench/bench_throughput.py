@@ -245,6 +245,48 @@ assert USER_LOADING_ADVISED.count("lattice/") == 2 and "{plane}" not in USER_LOA
 MODELS["lattice/bond:user-deck-advised"] = {**MODELS["lattice/bond:user-deck"],
                                             "loading": USER_LOADING_ADVISED}
 
+
+# What is left between the advised deck and the tuned one, one set-up choice at a time
+# (bench/deck_steps.py): each model is the advised deck with one change towards the tuned
+# deck, as edits (old text, new text) of the advised deck's input for a dimension.
+def _edits_rows(dim: int) -> list[tuple[str, str]]:
+    """create_atoms with a one-atom (primitive) cell: the particles numbered row by row."""
+    a = math.sqrt(2) * D
+    return [("create_atoms    1 region block",
+             PRIMITIVE[dim].format(a=a, d=D, h=math.sqrt(3) / 2) + "create_atoms    1 region block")]
+
+
+def _edits_atomic(dim: int) -> list[tuple[str, str]]:
+    """atom_style atomic: a mass per type, the diameter given to the pair style."""
+    m = PARAMS[dim]["mass"]
+    return [("atom_style      sphere", "atom_style      atomic"),
+            (f"set             type 1 diameter {D}\nset             type 1 mass {m}\n",
+             f"mass            1 {m}\n"),
+            ("pair_style      lattice/bond\n", f"pair_style      lattice/bond diameter {D}\n")]
+
+
+def _edits_setforce(dim: int) -> list[tuple[str, str]]:
+    """platens given a velocity and held by fix setforce, fix lattice/nve on every atom."""
+    v = ("0 0 0.05", "0 0 -0.05") if dim == 3 else ("0 0.05 0", "0 -0.05 0")
+    return [(f"fix             up top move linear {v[0]}\nfix             down bottom move linear "
+             f"{v[1]}\n",
+             f"velocity        top set {v[0]}\nvelocity        bottom set {v[1]}\n"
+             "fix             ztop top setforce 0 0 0\nfix             zbot bottom setforce 0 0 0\n"),
+            ("fix             nve inner lattice/nve", "fix             nve all lattice/nve")]
+
+
+def _edits_bins(dim: int) -> list[tuple[str, str]]:
+    """bins of one neighbour cutoff for the lists and for sorting (LAMMPS: half a cutoff)."""
+    cut = 1.1 * D
+    return [("timestep", f"neigh_modify    binsize {cut}\natom_modify     sort 1000 {cut}\ntimestep")]
+
+
+DECK_STEPS = {"rows": _edits_rows, "atomic": _edits_atomic, "setforce": _edits_setforce,
+              "bins": _edits_bins}
+for _step, _edits in DECK_STEPS.items():
+    MODELS[f"lattice/bond:user-deck-advised+{_step}"] = {
+        **MODELS["lattice/bond:user-deck-advised"], "edits": _edits}
+
 FEATURE_MODELS = ["lattice/bond", "lattice/bond:frictionless", "lattice/bond:no-shear",
                   "lattice/bond:two-types", "lattice/bond+energy", "lattice/bond:corotational",
                   "lattice/bond:heterogeneous", "lattice/bond:cell-numbering",
@@ -267,8 +309,8 @@ def build_input(name: str, cells: int, dim: int = 3, numbering: str = "rows") ->
         rows = cells / math.sqrt(3)
         ax, v = ("z", ("0 0 0.05", "0 0 -0.05")) if dim == 3 else ("y", ("0 0.05 0", "0 -0.05 0"))
         slab = {"z": "INF INF INF INF {lo} {hi}", "y": "INF INF {lo} {hi} INF INF"}[ax]
-        return (spec["deck"][dim].format(a=math.sqrt(2) * D, d=D, n=cells - 0.1, n1=cells + 1,
-                                          ny=rows - 0.1, n1y=rows + 1)
+        text = (spec["deck"][dim].format(a=math.sqrt(2) * D, d=D, n=cells - 0.1, n1=cells + 1,
+                                         ny=rows - 0.1, n1y=rows + 1)
                 + f"set             type 1 diameter {D}\nset             type 1 mass {p['mass']}\n"
                 + "pair_style      lattice/bond\n"
                 + "pair_coeff      1 1 {kn} {ks} {xb} {fs0} {mup}\n".format(**p)
@@ -277,6 +319,11 @@ def build_input(name: str, cells: int, dim: int = 3, numbering: str = "rows") ->
                 + spec.get("loading", USER_LOADING).format(
                     vtop=v[0], vbottom=v[1], dt=p["dt"],
                     plane="fix             plane all enforce2d\n" if dim == 2 else ""))
+        for old, new in spec.get("edits", lambda _: [])(dim):
+            if text.count(old) != 1:
+                raise ValueError(f"{name}: the edit of {old!r} needs it once in the deck")
+            text = text.replace(old, new)
+        return text
     values = dict(p, xb_d=p["xb"] / D, fs0x10=10 * p["fs0"])
     parts = [spec["setup"]]
     a = math.sqrt(2) * D

@@ -28,6 +28,24 @@ PairStyle(lattice/bond,PairLatticeBond);
 #include <string>
 #include <utility>
 
+// The force loop is compiled twice on x86-64 Linux, for the baseline instruction set
+// (SSE2) and for AVX2, and the processor picks one when the plugin or LAMMPS is loaded
+// (function multiversioning: GCC's and Clang's target_clones, an ifunc).  With AVX2 the
+// batched square roots and divisions of the record geometry run four at a time.  Both
+// do the same IEEE operations in the same order (no fused multiply-add: the sources are
+// compiled with -ffp-contract=off, and the avx2 target does not enable FMA), so they
+// give the same bits (bench/compare_bits.py; docs/performance.md, "The force loop for
+// AVX2").  -DBONDED_LATTICE_NO_TARGET_CLONES builds the baseline loop only.
+#if defined(__x86_64__) && defined(__linux__) && defined(__has_attribute) && \
+    !defined(BONDED_LATTICE_NO_TARGET_CLONES)
+#if __has_attribute(target_clones)
+#define LB_LOOP_CLONES __attribute__((target_clones("avx2", "default")))
+#endif
+#endif
+#ifndef LB_LOOP_CLONES
+#define LB_LOOP_CLONES
+#endif
+
 namespace LAMMPS_NS {
 
 class FixLatticeBondStore;
@@ -209,7 +227,7 @@ class PairLatticeBond : public Pair, public LatticeCommCarrier, public LatticeEn
   virtual void run_force_loop();
   void check_spring_components() const;
   // the loop over the records of particles ifrom..ito-1 (pair_lattice_bond_eval.h)
-  template <int F, class Sink> void eval(int ifrom, int ito, double (*f)[3], Sink &tally);
+  template <int F, class Sink> LB_LOOP_CLONES void eval(int ifrom, int ito, double (*f)[3], Sink &tally);
   // what the serial loop tallies: energy/virial into Pair's accumulators, heat into heat[]
   struct SerialTally {
     PairLatticeBond *style;

@@ -1,0 +1,55 @@
+"""What is left between a user's deck and the tuned one, one set-up choice at a time.
+
+The user-written deck of bench_throughput.py (atom_style sphere, create_atoms with the
+lattice's conventional cells, LAMMPS' default neighbour settings, platens by fix move,
+fix nve and fix viscous) after the lines the pair style's warnings name ("advised": the
+skin, fix lattice/nve, fix lattice/viscous), then the advised deck with one more change
+towards the tuned deck at a time (bench_throughput.DECK_STEPS):
+
+- rows: the particles numbered row by row (create_atoms with a one-atom cell);
+- atomic: atom_style atomic with a mass per type (no per-atom radius, mass, torque);
+- setforce: the platens given a velocity and held by fix setforce, fix lattice/nve on all;
+- bins: bins of one neighbour cutoff for the lists and the sorting.
+
+All models run in one process per repeat (bench/run.py's measure), on 1 and 2 ranks; the
+printed numbers are medians over the repeats of the rate of each model divided by the
+tuned deck's rate in the same process.
+
+    python bench/deck_steps.py [--repeat 5] [--steps 2000] [--cells3 23] [--cells2 235]
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+
+from bench_throughput import DECK_STEPS
+from run import measure
+
+TUNED = "lattice/bond"
+WRITTEN = "lattice/bond:user-deck"
+ADVISED = "lattice/bond:user-deck-advised"
+MODELS = [TUNED, WRITTEN, ADVISED] + [f"{ADVISED}+{step}" for step in DECK_STEPS]
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--steps", type=int, default=2000)
+    parser.add_argument("--cells3", type=int, default=23, help="3D: fcc cells per side")
+    parser.add_argument("--cells2", type=int, default=235, help="2D: particles along x")
+    args = parser.parse_args()
+    print("| dim | particles | ranks | " + " | ".join(m.split(":")[-1] for m in MODELS[1:]) + " |")
+    print("|---|---|---|" + "---|" * (len(MODELS) - 1))
+    for dim, cells in ((3, args.cells3), (2, args.cells2)):
+        for ranks in (1, 2):
+            runs = [{r["model"]: r["rate"] for r in measure(cells, args.steps, ranks, dim, MODELS)}
+                    for _ in range(args.repeat)]
+            particles = measure(cells, 1, 1, dim, [TUNED])[0]["particles"]
+            ratios = [statistics.median(run[m] / run[TUNED] for run in runs) for m in MODELS[1:]]
+            print(f"| {dim}D | {particles} | {ranks} | " + " | ".join(f"{r:.2f}" for r in ratios)
+                  + " |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
