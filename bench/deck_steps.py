@@ -13,9 +13,12 @@ towards the tuned deck at a time (bench_throughput.DECK_STEPS):
 
 All models run in one process per repeat (bench/run.py's measure), on 1 and 2 ranks; the
 printed numbers are medians over the repeats of the rate of each model divided by the
-tuned deck's rate in the same process.
+tuned deck's rate in the same process.  ``targets`` instead measures issue 21's target:
+the deck as written and the advised deck against the tuned deck and against bpm/spring
+(and the tuned deck against bpm/spring), with each run's advised/tuned ratio.
 
-    python bench/deck_steps.py [--repeat 5] [--steps 2000] [--cells3 23] [--cells2 235]
+    python bench/deck_steps.py steps [--repeat 3] [--steps 1000] [--cells3 23] [--cells2 235]
+    python bench/deck_steps.py targets [--repeat 5] [--steps 2000]
 """
 
 from __future__ import annotations
@@ -29,16 +32,42 @@ from run import measure
 TUNED = "lattice/bond"
 WRITTEN = "lattice/bond:user-deck"
 ADVISED = "lattice/bond:user-deck-advised"
+BPM = "bpm/spring"
 MODELS = [TUNED, WRITTEN, ADVISED] + [f"{ADVISED}+{step}" for step in DECK_STEPS]
+TARGET_MODELS = [TUNED, ADVISED, BPM, WRITTEN]
+
+
+def targets(args: argparse.Namespace) -> None:
+    """The written and the advised deck against the tuned deck and bpm/spring."""
+    print("| dim | particles | ranks | as written / tuned | as written / bpm/spring "
+          "| advised / tuned | advised / bpm/spring | tuned / bpm/spring | advised / tuned, each run |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for dim, cells in ((3, args.cells3), (2, args.cells2)):
+        for ranks in (1, 2):
+            runs = [{r["model"]: r for r in measure(cells, args.steps, ranks, dim, TARGET_MODELS)}
+                    for _ in range(args.repeat)]
+
+            def ratio(a: str, b: str) -> float:
+                return statistics.median(run[a]["rate"] / run[b]["rate"] for run in runs)
+
+            each = ", ".join(f"{run[ADVISED]['rate'] / run[TUNED]['rate']:.2f}" for run in runs)
+            print(f"| {dim}D | {runs[0][TUNED]['particles']} | {ranks} | "
+                  f"{ratio(WRITTEN, TUNED):.2f} | {ratio(WRITTEN, BPM):.2f} | "
+                  f"{ratio(ADVISED, TUNED):.2f} | {ratio(ADVISED, BPM):.2f} | "
+                  f"{ratio(TUNED, BPM):.2f} | {each} |", flush=True)
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeat", type=int, default=5)
-    parser.add_argument("--steps", type=int, default=2000)
+    parser.add_argument("table", choices=("steps", "targets"))
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--steps", type=int, default=1000)
     parser.add_argument("--cells3", type=int, default=23, help="3D: fcc cells per side")
     parser.add_argument("--cells2", type=int, default=235, help="2D: particles along x")
     args = parser.parse_args()
+    if args.table == "targets":
+        targets(args)
+        return
     print("| dim | particles | ranks | " + " | ".join(m.split(":")[-1] for m in MODELS[1:]) + " |")
     print("|---|---|---|" + "---|" * (len(MODELS) - 1))
     for dim, cells in ((3, args.cells3), (2, args.cells2)):
