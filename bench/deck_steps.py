@@ -42,8 +42,8 @@ def targets(args: argparse.Namespace) -> None:
     print("| dim | particles | ranks | as written / tuned | as written / bpm/spring "
           "| advised / tuned | advised / bpm/spring | tuned / bpm/spring | advised / tuned, each run |")
     print("|---|---|---|---|---|---|---|---|---|")
-    for dim, cells in ((3, args.cells3), (2, args.cells2)):
-        for ranks in (1, 2):
+    for dim, cells in ((d, args.cells3 if d == 3 else args.cells2) for d in args.dims):
+        for ranks in args.ranks:
             runs = [{r["model"]: r for r in measure(cells, args.steps, ranks, dim, TARGET_MODELS)}
                     for _ in range(args.repeat)]
 
@@ -64,14 +64,16 @@ def main() -> None:
     parser.add_argument("--steps", type=int, default=1000)
     parser.add_argument("--cells3", type=int, default=23, help="3D: fcc cells per side")
     parser.add_argument("--cells2", type=int, default=235, help="2D: particles along x")
+    parser.add_argument("--dims", type=int, nargs="+", choices=(2, 3), default=[3, 2])
+    parser.add_argument("--ranks", type=int, nargs="+", choices=(1, 2), default=[1, 2])
     args = parser.parse_args()
     if args.table == "targets":
         targets(args)
         return
     print("| dim | particles | ranks | " + " | ".join(m.split(":")[-1] for m in MODELS[1:]) + " |")
     print("|---|---|---|" + "---|" * (len(MODELS) - 1))
-    for dim, cells in ((3, args.cells3), (2, args.cells2)):
-        for ranks in (1, 2):
+    for dim, cells in ((d, args.cells3 if d == 3 else args.cells2) for d in args.dims):
+        for ranks in args.ranks:
             runs = [{r["model"]: r["rate"] for r in measure(cells, args.steps, ranks, dim, MODELS)}
                     for _ in range(args.repeat)]
             particles = measure(cells, 1, 1, dim, [TUNED])[0]["particles"]
