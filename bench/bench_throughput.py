@@ -62,6 +62,9 @@ PRIMITIVE = {
     2: "lattice         custom {d} a1 1.0 0.0 0.0 a2 0.5 {h} 0.0 a3 0.0 0.0 1.0 basis 0 0 0\n",
 }
 NUMBERINGS = ("rows", "cells")
+# the velocities of the top and bottom layers along the load axis (per second, in each deck's
+# units: `units box` in the tuned deck, lattice units in the user-written one)
+PLATEN_VELOCITY = {3: ("0 0 0.05", "0 0 -0.05"), 2: ("0 0.05 0", "0 -0.05 0")}
 
 GROUPS = """
 variable        lo equal $(bound(all,{ax}min))
@@ -267,7 +270,7 @@ def _edits_atomic(dim: int) -> list[tuple[str, str]]:
 
 def _edits_setforce(dim: int) -> list[tuple[str, str]]:
     """platens given a velocity and held by fix setforce, fix lattice/nve on every atom."""
-    v = ("0 0 0.05", "0 0 -0.05") if dim == 3 else ("0 0.05 0", "0 -0.05 0")
+    v = PLATEN_VELOCITY[dim]
     return [(f"fix             up top move linear {v[0]}\nfix             down bottom move linear "
              f"{v[1]}\n",
              f"velocity        top set {v[0]}\nvelocity        bottom set {v[1]}\n"
@@ -307,7 +310,7 @@ def build_input(name: str, cells: int, dim: int = 3, numbering: str = "rows") ->
     p = PARAMS[dim]
     if "deck" in spec:    # a whole deck of its own (the user-written one)
         rows = cells / math.sqrt(3)
-        ax, v = ("z", ("0 0 0.05", "0 0 -0.05")) if dim == 3 else ("y", ("0 0.05 0", "0 -0.05 0"))
+        ax, v = ("z" if dim == 3 else "y"), PLATEN_VELOCITY[dim]
         slab = {"z": "INF INF INF INF {lo} {hi}", "y": "INF INF {lo} {hi} INF INF"}[ax]
         text = (spec["deck"][dim].format(a=math.sqrt(2) * D, d=D, n=cells - 0.1, n1=cells + 1,
                                          ny=rows - 0.1, n1y=rows + 1)
@@ -331,13 +334,13 @@ def build_input(name: str, cells: int, dim: int = 3, numbering: str = "rows") ->
     if dim == 3:
         parts.append(LATTICE[3].format(a=a, n=cells - 0.1, n1=cells + 1,
                                        box_args=spec["box_args"], numbering=primitive))
-        ax, v = "z", ("0 0 0.05", "0 0 -0.05")
+        ax, v = "z", PLATEN_VELOCITY[3]
     else:
         rows = cells / math.sqrt(3)          # hex cells of d x sqrt3 d with 2 particles: square
         parts.append(LATTICE[2].format(d=D, n=cells - 0.1, n1=cells + 1, ny=rows - 0.1,
                                        n1y=rows + 1, box_args=spec["box_args"],
                                        numbering=primitive))
-        ax, v = "y", ("0 0.05 0", "0 -0.05 0")
+        ax, v = "y", PLATEN_VELOCITY[2]
     slab = {"z": "INF INF INF INF {lo} {hi}", "y": "INF INF {lo} {hi} INF INF"}[ax]
     parts.append(GROUPS.format(
         ax=ax, top=slab.format(lo=f"$(v_hi-{0.25 * D})", hi="INF"),

@@ -413,16 +413,8 @@ int FixLatticeBondStore::update_displacements(double limit)
   move({Phase::LAST_POSITIONS}, Phase::PASS_STEP, "forming the step's displacements (update_displacements)");
   if (nlocal == 0) return -1;
   if (domain->triclinic) {
-    const int dim = domain->dimension;
-    const double *x = atom->x[0];
-    for (int i = 0; i < nlocal; i++) {
-      double *m = motion + 3 * i;
-      double step[3] = {x[3 * i] - m[0], x[3 * i + 1] - m[1],
-                        (dim == 3) ? x[3 * i + 2] - m[2] : 0.0};
-      lattice_unwrap_step(domain, step);
-      for (int k = 0; k < 3; k++) m[k] = step[k];
-    }
-    return (limit > 0.0) ? first_beyond(limit, dim) : -1;
+    for (int i = 0; i < nlocal; i++) step_from_last_position(i);
+    return (limit > 0.0) ? first_beyond(limit, domain->dimension) : -1;
   }
   // 2D: the force loop reads x and y only (z stays 0)
   return (domain->dimension == 2) ? orthogonal_steps<2>(limit) : orthogonal_steps<3>(limit);
@@ -456,26 +448,33 @@ template <int DIM> int FixLatticeBondStore::orthogonal_steps(double limit)
 }
 
 /* ----------------------------------------------------------------------
+   atom i's triple: its last position -> its step, x - last position with a
+   periodic jump removed (lattice_unwrap_step: the same arithmetic as
+   orthogonal_steps in an orthogonal box); 2D steps have no z part
+------------------------------------------------------------------------- */
+
+void FixLatticeBondStore::step_from_last_position(int i)
+{
+  const double *const x = atom->x[i];
+  double *const m = motion + 3 * i;
+  double step[3] = {x[0] - m[0], x[1] - m[1], (domain->dimension == 3) ? x[2] - m[2] : 0.0};
+  lattice_unwrap_step(domain, step);
+  for (int k = 0; k < 3; k++) m[k] = step[k];
+}
+
+/* ----------------------------------------------------------------------
    fix lattice/nve measured the atoms of its group: the others' steps from
-   their last positions, with the arithmetic of the pass (a periodic jump
-   removed as orthogonal_steps and the triclinic branch do); 2D steps have
-   no z part
+   their last positions, as the pass forms them
 ------------------------------------------------------------------------- */
 
 bool FixLatticeBondStore::unmeasured_steps(double limit)
 {
   if (neighbor->ago == 0 || atom->nlocal != unmeasured_nlocal) list_unmeasured();
   const int dim = domain->dimension;
-  const double *const x = atom->x[0];
   int ok = 1;
   for (const int i : unmeasured) {
-    double *m = motion + 3 * i;
-    double step[3] = {x[3 * i] - m[0], x[3 * i + 1] - m[1], (dim == 3) ? x[3 * i + 2] - m[2] : 0.0};
-    lattice_unwrap_step(domain, step);
-    for (int k = 0; k < 3; k++) {
-      m[k] = step[k];
-      if (k < dim) ok &= (std::fabs(step[k]) <= limit);    // false for NaN too
-    }
+    step_from_last_position(i);
+    for (int k = 0; k < dim; k++) ok &= (std::fabs(motion[3 * i + k]) <= limit);    // false for NaN too
   }
   return ok || limit <= 0.0;
 }

@@ -251,6 +251,7 @@ class FixLatticeBondStore : public Fix {
   void replace_records(double *, tagint *, LatticeBondState *);
   template <int DIM> int orthogonal_steps(double limit);
   int first_beyond(double limit, int dim) const;
+  void step_from_last_position(int i);    // atom i's triple: last position -> step
   // steps of the atoms outside measured_bit (x - last position), as the pass
   // forms them; false if one exceeds limit > 0
   bool unmeasured_steps(double limit);
