@@ -217,3 +217,21 @@ def test_a_platen_overlapping_the_group_brings_the_pass_back(tmp_path, dim):
     assert ref.returncode == 0 and ours.returncode == 0, (ref.output + ours.output)[-3000:]
     assert "measures the steps" not in ours.output
     assert (tmp_path / "ours" / "final.dump").read_text() == (tmp_path / "nve" / "final.dump").read_text()
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_a_deforming_box_brings_the_pass_back(tmp_path, dim):
+    """fix deform stretches the periodic box and remaps the atoms, which moves the atoms
+    of the fix's group too: the fix cannot measure their steps, so the store forms every
+    step (no message), and the trajectory is fix nve's under the same fixes, bit for bit
+    (both runs form the steps of the wrapped atoms the same way)."""
+    deform = "fix             stretch all deform 1 x erate 2000.0 remap x\n"
+    runs = {}
+    for integrator in ("nve", "lattice/nve"):
+        deck = platen_scene(dim, integrator, shear=True).replace("fix             damp", deform
+                                                                  + "fix             damp")
+        runs[integrator] = run_deck(deck, tmp_path / integrator.replace("/", "_"))
+        assert runs[integrator].returncode == 0, runs[integrator].output[-3000:]
+    assert "measures the steps" not in runs["lattice/nve"].output
+    a, b = ((tmp_path / run / "final.dump").read_text() for run in ("lattice_nve", "nve"))
+    assert a == b
