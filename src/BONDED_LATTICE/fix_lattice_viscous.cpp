@@ -16,8 +16,12 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "group.h"
+#include "neighbor.h"
 #include "output.h"
 #include "update.h"
+
+#include <type_traits>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -49,6 +53,7 @@ int FixLatticeViscous::setmask()
 
 void FixLatticeViscous::setup(int vflag)
 {
+  group_runs.invalidate();    // the group's members or the atoms' order may have changed
   if (!fdamp_valid) {
     damp(false);
     return;
@@ -122,13 +127,28 @@ template <int DIM, bool ALL, bool KEEP> void FixLatticeViscous::damp_components(
     heat -= 0.5 * update->dt * work;
   }
   const double minus_eta = -eta;
-  for (int i = 0; i < nlocal; i++) {
-    if (!ALL && !(mask[i] & groupbit)) continue;
-    for (int k = 0; k < DIM; k++) {
-      const double fd = minus_eta * v[3 * i + k];
-      if (KEEP) h[3 * i + k] = fd;
-      f[3 * i + k] += fd;
+  // atoms first..last-1 (TEST: only those of the group)
+  auto loop = [&](int first, int last, auto test) {
+    for (int i = first; i < last; i++) {
+      if (decltype(test)::value && !(mask[i] & groupbit)) continue;
+      for (int k = 0; k < DIM; k++) {
+        const double fd = minus_eta * v[3 * i + k];
+        if (KEEP) h[3 * i + k] = fd;
+        f[3 * i + k] += fd;
+      }
     }
+  };
+  if (ALL) {
+    loop(0, nlocal, std::false_type());
+  } else if (!group->dynamic[igroup] &&
+             group_runs.current(mask, groupbit, nlocal, neighbor->lastcall, update->firststep)) {
+    // a group in long runs of consecutive atoms: each run without the mask test
+    group_runs.each_within(0, nlocal, [&](int first, int last) {
+      loop(first, last, std::false_type());
+      return true;
+    });
+  } else {
+    loop(0, nlocal, std::true_type());
   }
 }
 

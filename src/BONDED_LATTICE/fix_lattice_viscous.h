@@ -14,6 +14,7 @@ FixStyle(lattice/viscous,FixLatticeViscous);
 
 #include "fix_lattice_atom_history.h"
 #include "lattice_energy_source.h"
+#include "lattice_group_runs.h"
 
 namespace LAMMPS_NS {
 
@@ -41,6 +42,9 @@ class FixLatticeViscous : public FixLatticeAtomHistory, public LatticeEnergySour
   double heat;        // work of the damping forces, trapezoidal rule, sign flipped
   // hist[i][0..2]: damping force of the last step, reapplied by setup()
   int fdamp_valid;    // 1 once fdamp holds a step's force
+
+  // a group that is not all in runs of consecutive atoms (LatticeGroupRuns)
+  LatticeGroupRuns group_runs;
 
   void damp(bool step_taken);
   template <int DIM, bool ALL, bool KEEP> void damp_components(bool step_taken);

@@ -16,7 +16,8 @@ COEFFS = {dim: "* * " + coeffs(WEAK_SHEAR[dim]) for dim in (2, 3)}
 
 
 def run_scene(dim: int, integrator: str, group: str, steps: int = 800,
-              extra: str = "") -> tuple[np.ndarray, list]:
+              extra: str = "", shake: float = 0.3,
+              damping: str = "lattice/viscous") -> tuple[np.ndarray, list]:
     from lammps import lammps
 
     lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
@@ -26,11 +27,11 @@ pair_style      lattice/bond
 pair_coeff      {COEFFS[dim]}
 neighbor        {0.1 * D} bin
 {extra}
-{SHAKE.format(v=0.3, rate=300.0, mid=3 * D, vz='v_vz' if dim == 3 else 'NULL')}
+{SHAKE.format(v=shake, rate=300.0, mid=3 * D, vz='v_vz' if dim == 3 else 'NULL')}
 compute         b all lattice/bonds
 thermo          {steps}
 fix             move {group} {integrator}
-fix             damp half lattice/viscous 0.5
+fix             damp half {damping} 0.5
 {"fix plane all enforce2d" if dim == 2 and integrator == "nve" else ""}
 timestep        {2.0e-8 if dim == 2 else 1.0e-8}
 run             {steps}
@@ -235,3 +236,69 @@ def test_a_deforming_box_brings_the_pass_back(tmp_path, dim):
     assert "measures the steps" not in runs["lattice/nve"].output
     a, b = ((tmp_path / run / "final.dump").read_text() for run in ("lattice_nve", "nve"))
     assert a == b
+
+
+# LAMMPS sorts the atoms in space every 10 steps with bins of a fifth of a diameter, and
+# the block is shaken 30 times harder than in the other scenes (10 m/s): the atoms move
+# by about a diameter in 800 steps, so each sort reorders them
+SORT_OFTEN = f"atom_modify     sort 10 {0.2 * D}\n"
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("group", ["half", "odd"])
+def test_group_runs_follow_the_sorting(dim, group):
+    """A group that is not all moves in runs of consecutive atoms (the group-all loop
+    over each run, formed again whenever LAMMPS may have reordered the atoms) when its
+    runs are long ('half', the lower half of the IDs), else with the mask test per atom
+    ('odd', every other ID: runs of one atom).  With the atoms sorted every 10 steps, a
+    run list not formed again after a sort would move atoms outside the group and leave
+    atoms of it behind: the trajectory must stay fix nve's to the last bit.  (In 3D the
+    sorts move atoms across the ends of the group's runs: without the new run list after
+    each sort, the run stops with an instability; in 2D the group's two runs keep their
+    ends, and the case checks the runs' loop against fix nve.)"""
+    extra = SORT_OFTEN + ("group           odd id 1:100000:2\n" if group == "odd" else "")
+    ref, c_ref = run_scene(dim, "nve", group, extra=extra, shake=10.0)
+    ours, c_ours = run_scene(dim, "lattice/nve", group, extra=extra, shake=10.0)
+    assert c_ref[1] > 0 and c_ours == c_ref, (c_ref, c_ours)
+    assert np.array_equal(ours, ref), np.max(np.abs(ours - ref))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_damping_runs_follow_the_sorting(dim):
+    """fix lattice/viscous on 'half' damps in runs of consecutive atoms too: with the
+    atoms sorted every 10 steps it must damp exactly the group's atoms, as LAMMPS' fix
+    viscous does (f - eta v and f + (-eta) v are the same number): the same bits."""
+    ref, c_ref = run_scene(dim, "nve", "all", extra=SORT_OFTEN, shake=10.0, damping="viscous")
+    ours, c_ours = run_scene(dim, "nve", "all", extra=SORT_OFTEN, shake=10.0)
+    assert c_ref[1] > 0 and c_ours == c_ref, (c_ref, c_ours)
+    assert np.array_equal(ours, ref), np.max(np.abs(ours - ref))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_group_runs_follow_the_sorting_with_platens(tmp_path, dim):
+    """The platen deck (fix lattice/nve measuring the steps of the inner atoms, fix move
+    the platens) with the atoms sorted every 10 steps, on 2 ranks (atoms also migrate):
+    fix nve's trajectory to the last bit."""
+    decks = {i: platen_scene(dim, i).replace("pair_style", SORT_OFTEN + "pair_style", 1)
+             for i in ("nve", "lattice/nve")}
+    ref = run_deck(decks["nve"], tmp_path / "nve", np=2)
+    ours = run_deck(decks["lattice/nve"], tmp_path / "ours", np=2)
+    assert ref.returncode == 0 and ours.returncode == 0, (ref.output + ours.output)[-3000:]
+    assert "measures the steps of group inner" in ours.output
+    assert ref.thermo[-1]["c_b[2]"][-1] > 0
+    a, b = ((tmp_path / run / "final.dump").read_text() for run in ("ours", "nve"))
+    assert a == b
+
+
+def test_a_dynamic_group_is_moved_atom_by_atom(tmp_path):
+    """A dynamic group changes its members between steps without any reordering: the
+    fix must test each atom's mask every step (no runs), as fix nve does.  The group is
+    the atoms in the lower half of the box at each step (2D, shaken block)."""
+    dyn = ("region          low block INF INF INF $(0.5*(bound(all,ymin)+bound(all,ymax))) "
+           "INF INF units box\n"
+           "group           half delete\n"
+           "group           half dynamic all region low every 1\n")
+    ref, c_ref = run_scene(2, "nve", "half", steps=400, extra=dyn)
+    ours, c_ours = run_scene(2, "lattice/nve", "half", steps=400, extra=dyn)
+    assert c_ours == c_ref, (c_ref, c_ours)
+    assert np.array_equal(ours, ref), np.max(np.abs(ours - ref))

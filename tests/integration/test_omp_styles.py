@@ -131,3 +131,25 @@ def test_ranks_times_threads_match_serial(tmp_path, dim):
     for col in ("PotEng", "KinEng", "Press", "c_e[5]", "c_e[6]", "c_e[7]"):
         np.testing.assert_allclose(thermo[col], serial_thermo[col], rtol=1e-10,
                                    atol=1e-10 * np.abs(serial_thermo[col]).max(), err_msg=col)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("threads", [2, 4])
+def test_threads_split_the_group_runs(tmp_path, dim, threads):
+    """fix lattice/nve/omp on a group that is not all ('half', the lower half of the
+    IDs: a few long runs of consecutive atoms) with the atoms sorted every 10 steps: the
+    threads' blocks of atoms cut the runs, and each thread must move exactly the group's
+    atoms of its block.  Only the fix is the /omp style (the pair style stays serial), and
+    its loops are per atom: the same bits as fix lattice/nve."""
+    def final(style: str, args: list[str]) -> str:
+        text = deck(dim, 300).replace("fix             nve all lattice/nve",
+                                      f"atom_modify     sort 10 {0.2 * D}\n"
+                                      f"fix             nve half {style}")
+        assert text.count(f"nve half {style}") == 1
+        work = tmp_path / style.replace("/", "_")
+        res = run_deck(text, work, args=args)
+        assert res.returncode == 0, res.error
+        return (work / "final.dump").read_text()
+
+    # -pk omp N without -sf omp: N threads, and only the styles named /omp use them
+    assert final("lattice/nve/omp", ["-pk", "omp", str(threads)]) == final("lattice/nve", [])
