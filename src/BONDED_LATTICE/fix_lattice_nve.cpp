@@ -20,7 +20,6 @@
 #include "force.h"
 #include "group.h"
 #include "modify.h"
-#include "neighbor.h"
 #include "pair_lattice_bond.h"
 #include "update.h"
 
@@ -162,7 +161,7 @@ void FixLatticeNVE::dispatch(bool drift)
   int n = (igroup == atom->firstgroup) ? atom->nfirst : atom->nlocal;
   // a group that is not all: in long runs of consecutive atoms the group-all
   // loop over each run, else the loop with the mask test
-  const bool runs = (igroup != 0) && group_runs_worthwhile(n);
+  const bool runs = (igroup != 0) && group_runs.usable(lmp, igroup, groupbit, n);
   const bool all = (igroup == 0) || runs;
   if (!planar && all && one_mass) {
     // 3D, every atom, one mass: x, v and f as flat streams of 3 nlocal values
@@ -210,17 +209,6 @@ void FixLatticeNVE::dispatch(bool drift)
 bool FixLatticeNVE::run_ranges(RangeFn loop, int n, const Measure &m)
 {
   return (this->*loop)(0, n, m);
-}
-
-/* ----------------------------------------------------------------------
-   the group's runs of atoms 0..n-1, formed again only when atoms may have
-   moved in the arrays: whether they are long enough to loop over
-------------------------------------------------------------------------- */
-
-bool FixLatticeNVE::group_runs_worthwhile(int n)
-{
-  return !group->dynamic[igroup] &&
-      group_runs.current(atom->mask, groupbit, n, neighbor->lastcall, update->firststep);
 }
 
 /* ----------------------------------------------------------------------

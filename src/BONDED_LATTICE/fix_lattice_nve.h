@@ -76,7 +76,6 @@ class FixLatticeNVE : public Fix {
   // without the mask test
   LatticeGroupRuns group_runs;
   RangeFn run_loop = nullptr;
-  bool group_runs_worthwhile(int n);
   bool over_runs(int begin, int end, const Measure &m);
 
   // the record store whose displacements the drift measures (see measuring_store)

@@ -16,8 +16,6 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
-#include "group.h"
-#include "neighbor.h"
 #include "output.h"
 #include "update.h"
 
@@ -140,8 +138,7 @@ template <int DIM, bool ALL, bool KEEP> void FixLatticeViscous::damp_components(
   };
   if (ALL) {
     loop(0, nlocal, std::false_type());
-  } else if (!group->dynamic[igroup] &&
-             group_runs.current(mask, groupbit, nlocal, neighbor->lastcall, update->firststep)) {
+  } else if (group_runs.usable(lmp, igroup, groupbit, nlocal)) {
     // a group in long runs of consecutive atoms: each run without the mask test
     group_runs.each_within(0, nlocal, [&](int first, int last) {
       loop(first, last, std::false_type());

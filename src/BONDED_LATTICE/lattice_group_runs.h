@@ -11,7 +11,12 @@
 #ifndef LMP_LATTICE_GROUP_RUNS_H
 #define LMP_LATTICE_GROUP_RUNS_H
 
+#include "atom.h"
+#include "group.h"
+#include "lammps.h"
 #include "lmptype.h"
+#include "neighbor.h"
+#include "update.h"
 
 #include <vector>
 
@@ -54,6 +59,14 @@ class LatticeGroupRuns {
     return worthwhile();
   }
   void invalidate() { stale = true; }
+
+  // current() for the group igroup (groupbit) among the local atoms 0..n-1 of
+  // lmp: never runs for a dynamic group, whose masks change between steps
+  bool usable(LAMMPS *lmp, int igroup, int groupbit, int n)
+  {
+    return !lmp->group->dynamic[igroup] &&
+        current(lmp->atom->mask, groupbit, n, lmp->neighbor->lastcall, lmp->update->firststep);
+  }
 
   // whether the runs are long enough (MIN_RUN atoms on average) that a call per
   // run costs less than the mask test per atom it saves
